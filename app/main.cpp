@@ -1,0 +1,122 @@
+// dem2d — the command line of the 2D DEM verification testbed.
+//   dem2d run CASE [--set key=value]... [--out DIR]      run a case, write series.csv, summary.json, vtk/
+//   dem2d check CASE [--set key=value]...                check a case and print what it resolves to
+//   dem2d study STUDY [--out DIR] [--jobs N]             run one verification study (verification/*/study.toml)
+//   dem2d report [--studies DIR] [--out DIR]             write the verification report from study results
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "dem/case_file.hpp"
+#include "dem/run.hpp"
+#include "dem/simulation.hpp"
+#include "engine/study.hpp"
+#include "report.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
+  const dem::Case c = dem::read_case(file, sets);
+  const double limit = dem::check_case(c);
+  const dem::Model& m = c.model;
+  fmt::print("{}: OK — {}\n", file.string(), c.title);
+  if (!c.source.empty()) fmt::print("  source: {}\n", c.source);
+  fmt::print("  {} elements, {} walls, {} materials, {} contact laws\n", m.elements.size(), m.walls.size(),
+             m.materials.size(), m.laws.size());
+  fmt::print("  integrator {}, dt = {:.6g} s, duration = {:.6g} s ({} steps)\n",
+             m.numerics.integrator == dem::Integrator::k18 ? "K18" : "K19", m.numerics.dt, m.numerics.duration,
+             std::llround(std::ceil(m.numerics.duration / m.numerics.dt - 1e-9)));
+  fmt::print("  stability limit of the assembly: {:.6g} s (dt is {:.3g} of it)\n", limit, m.numerics.dt / limit);
+  return 0;
+}
+
+int cmd_run(const fs::path& file, const std::vector<std::string>& sets, fs::path out, bool quiet) {
+  const dem::Case c = dem::read_case(file, sets);
+  if (out.empty()) out = fs::path("runs") / file.stem();
+  dem::RunOptions opt;
+  opt.out_dir = out;
+  opt.progress = !quiet;
+  const dem::RunResult r = dem::run_case(c, opt);
+  if (!quiet) {
+    fmt::print("{}: {} after {} steps (t = {:.6g} s) in {:.3g} s, {:.3g} element-steps/s\n", file.string(), r.status,
+               r.steps, r.time, r.wall_seconds, r.element_steps_per_second);
+    for (const auto& [k, v] : r.probes)
+      fmt::print("  {} = {}\n", k, v ? fmt::format("{:.10g}", *v) : std::string("(not available)"));
+    fmt::print("  written to {}\n", out.string());
+  }
+  if (r.status == "blow-up") {
+    fmt::print(stderr, "error: {}: {}\n", file.string(), r.message);
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"dem2d — verification-first 2D distinct element method testbed (Cundall disks, Matsui's "
+               "pseudo-rectangle elements)"};
+  app.require_subcommand(1);
+
+  std::string case_file, study_file;
+  std::vector<std::string> sets;
+  std::string out_dir;
+  bool quiet = false;
+  auto* run = app.add_subcommand("run", "Run a case: writes series.csv, summary.json and vtk/ snapshots");
+  run->add_option("case", case_file, "Case file (TOML)")->required()->check(CLI::ExistingFile);
+  run->add_option("--set", sets, "Override a case value: key=value, e.g. numerics.dt=1e-6 or \"contact.0.kn=12 kN/mm\"");
+  run->add_option("--out", out_dir, "Output folder (default runs/<case name>)");
+  run->add_flag("-q,--quiet", quiet, "No progress or summary on the terminal");
+
+  auto* check = app.add_subcommand("check", "Check a case (keys, units, values, time step) without running it");
+  check->add_option("case", case_file, "Case file (TOML)")->required()->check(CLI::ExistingFile);
+  check->add_option("--set", sets, "Override a case value: key=value");
+
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  auto* study = app.add_subcommand("study", "Run one verification study and write its result.json; fails if a check fails");
+  study->add_option("study", study_file, "Study file (verification/<name>/study.toml)")->required()->check(CLI::ExistingFile);
+  study->add_option("--out", out_dir, "Output folder (default build/studies/<name>)");
+  study->add_option("-j,--jobs", jobs, "Runs in parallel")->check(CLI::PositiveNumber);
+
+  std::string studies_dir = "build/studies", report_dir = "build/reports";
+  auto* rep = app.add_subcommand("report", "Write the verification report (index.html, index.md) from study results");
+  rep->add_option("--studies", studies_dir, "Folder with one sub-folder per study holding result.json");
+  rep->add_option("--out", report_dir, "Report folder");
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*run) return cmd_run(case_file, sets, out_dir, quiet);
+    if (*check) return cmd_check(case_file, sets);
+    if (*study) {
+      ver::StudyOptions o;
+      o.out_dir = out_dir;
+      o.jobs = jobs;
+      const ver::StudyResult r = ver::run_study(study_file, o);
+      return r.passed ? 0 : 1;
+    }
+    if (*rep) {
+      report::Options o;
+      o.studies_dir = studies_dir;
+      o.out_dir = report_dir;
+      o.title = "dem2d verification report";
+      o.provenance = dem::provenance();
+      const report::Written w = report::write_report(o);
+      fmt::print("report: {} studies, {} figures\n  {}\n  {}\n", w.studies, w.figures, fs::absolute(w.html).string(),
+                 fs::absolute(w.markdown).string());
+      return 0;
+    }
+  } catch (const dem::CaseError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,570 @@
+#include "dem/case_file.hpp"
+
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "dem/case_reader.hpp"
+#include "dem/simulation.hpp"
+
+namespace dem {
+
+namespace {
+
+// ---- overrides --------------------------------------------------------------------------------
+
+std::vector<std::string> split_path(const std::string& p) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (std::size_t k = 0; k <= p.size(); ++k) {
+    if (k == p.size() || p[k] == '.') {
+      out.push_back(p.substr(start, k - start));
+      start = k + 1;
+    }
+  }
+  return out;
+}
+
+bool is_index(const std::string& s) {
+  return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+}
+
+/// Applies `path=value` to the tree: value is parsed as a TOML value when it is one ("1e-6", "true",
+/// "[1, 2]", "\"12 kN/mm\""), otherwise taken as a string ("12 kN/mm").
+void apply_override(toml::table& root, const std::string& kv) {
+  const auto eq = kv.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw CaseError(fmt::format("--set {}: expected key=value, e.g. --set numerics.dt=1e-6", kv));
+  const std::string path = kv.substr(0, eq), value = kv.substr(eq + 1);
+  const std::string origin = "--set " + kv;
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + value, origin);
+  } catch (const toml::parse_error&) {
+    std::string quoted;  // not a TOML value: take it as a string ("12 kN/mm")
+    for (char ch : value) {
+      if (ch == '"' || ch == '\\') quoted += '\\';
+      quoted += ch;
+    }
+    try {
+      parsed = toml::parse("v = \"" + quoted + "\"", origin);
+    } catch (const toml::parse_error& e) {
+      throw CaseError(fmt::format("{}: cannot read the value: {}", origin, e.description()));
+    }
+  }
+  const auto parts = split_path(path);
+  toml::node* cur = &root;
+  std::string so_far;
+  for (std::size_t k = 0; k + 1 < parts.size(); ++k) {
+    const std::string& p = parts[k];
+    so_far += (so_far.empty() ? "" : ".") + p;
+    if (auto* arr = cur->as_array()) {
+      if (!is_index(p) || std::stoul(p) >= arr->size())
+        throw CaseError(fmt::format("{}: {}: expected an index below {} into this array", origin, so_far, arr->size()));
+      cur = arr->get(std::stoul(p));
+    } else if (auto* tbl = cur->as_table()) {
+      toml::node* next = tbl->get(p);
+      if (!next) {
+        tbl->insert(p, toml::table{});
+        next = tbl->get(p);
+      }
+      cur = next;
+    } else {
+      throw CaseError(fmt::format("{}: {}: is a value, not a table", origin, so_far));
+    }
+  }
+  const std::string& last = parts.back();
+  toml::node* v = parsed.get("v");
+  if (auto* tbl = cur->as_table()) {
+    v->visit([&](auto& n) { tbl->insert_or_assign(last, n); });
+  } else if (auto* arr = cur->as_array(); arr && is_index(last) && std::stoul(last) < arr->size()) {
+    const auto idx = std::stoul(last);
+    v->visit([&](auto& n) { arr->replace(arr->begin() + static_cast<std::ptrdiff_t>(idx), n); });
+  } else {
+    throw CaseError(fmt::format("{}: {}: cannot set this path", origin, path));
+  }
+}
+
+// ---- tables -----------------------------------------------------------------------------------
+
+struct Reader {
+  std::string file;
+  Case& c;
+  std::map<std::string, std::int32_t> material_index, drive_index, wall_index;
+  std::int32_t next_group = 0;
+
+  /// Iterates an array of tables `name` ([[name]] in TOML).
+  template <class F>
+  void each(const TableReader& top, const std::string& name, F&& f) {
+    const toml::node* n = top.node(name);
+    top.mark(name);
+    if (!n) return;
+    const toml::array* arr = n->as_array();
+    if (!arr) top.fail(name, fmt::format("expected [[{}]] tables", name));
+    for (std::size_t k = 0; k < arr->size(); ++k) {
+      const toml::table* t = arr->get(k)->as_table();
+      if (!t) top.fail(name, fmt::format("expected [[{}]] tables", name));
+      TableReader r(*t, fmt::format("{}.{}", name, k), file);
+      f(r, k);
+      r.finish();
+    }
+  }
+
+  std::int32_t material(const TableReader& r, const std::string& key) {
+    const std::string name = r.string(key);
+    auto it = material_index.find(name);
+    if (it == material_index.end()) r.fail(key, fmt::format("unknown material \"{}\" (declare it in [[material]])", name));
+    return it->second;
+  }
+
+  void positive(const TableReader& r, const std::string& key, double v) {
+    if (!(v > 0.0)) r.fail(key, fmt::format("must be positive, got {}", v));
+  }
+  void non_negative(const TableReader& r, const std::string& key, double v) {
+    if (!(v >= 0.0)) r.fail(key, fmt::format("must not be negative, got {}", v));
+  }
+
+  void read_contact(const TableReader& r) {
+    Model& m = c.model;
+    const toml::node* between = r.node("between");
+    r.strings("between");
+    const auto names = r.strings("between");
+    if (!between || names.size() != 2) r.fail("between", "expected two material names, e.g. [\"sand\", \"steel\"]");
+    std::int32_t ma = -1, mb = -1;
+    for (int k = 0; k < 2; ++k) {
+      auto it = material_index.find(names[static_cast<std::size_t>(k)]);
+      if (it == material_index.end()) r.fail("between", fmt::format("unknown material \"{}\"", names[static_cast<std::size_t>(k)]));
+      (k == 0 ? ma : mb) = it->second;
+    }
+    const std::size_t nm = m.materials.size();
+    if (m.law_of_pair[static_cast<std::size_t>(ma) * nm + mb] >= 0)
+      r.fail("between", fmt::format("the pair {} – {} already has a [[contact]]", names[0], names[1]));
+    PairLaw law;
+    const std::string kind = r.choice("law", {"linear", "face"}, "linear");
+    law.kind = kind == "linear" ? LawKind::linear : LawKind::face;
+    const double l = m.thickness;
+    // friction
+    if (r.has("friction") && r.has("friction_angle")) r.fail("friction", "give either friction or friction_angle");
+    double mu = r.has("friction_angle") ? std::tan(r.quantity("friction_angle", dims::angle)) : r.number("friction", 0.0);
+    if (r.has("friction_angle")) {
+      const double phi = std::atan(mu);
+      if (!(phi >= 0.0 && phi < std::numbers::pi / 2)) r.fail("friction_angle", "expected 0 <= phi < 90 deg");
+    }
+    non_negative(r, r.has("friction") ? "friction" : "friction_angle", mu);
+    // damping
+    law.damping_from_ratio = !r.has("eta_n");
+    if (law.damping_from_ratio) {
+      law.damping_ratio = r.number("damping_ratio", 0.0);
+      non_negative(r, "damping_ratio", law.damping_ratio);
+      law.mass_basis = r.choice("mass_basis", {"reduced", "particle"}, "reduced") == "reduced" ? MassBasis::reduced : MassBasis::particle;
+      if (r.has("eta_s")) r.fail("eta_s", "give eta_s only together with eta_n");
+    } else {
+      if (r.has("damping_ratio")) r.fail("damping_ratio", "give either damping_ratio or eta_n");
+      auto [en, dn] = r.quantity_either("eta_n", dims::damping, dims::damping_per_thickness);
+      law.eta_n = dn == dims::damping ? en : en * l;
+      non_negative(r, "eta_n", law.eta_n);
+    }
+    law.onset = r.choice("onset", {"increment", "overlap"}, "increment") == "increment" ? Onset::increment : Onset::overlap;
+
+    if (law.kind == LawKind::linear) {
+      auto [kn, dkn] = r.quantity_either("kn", dims::stiffness, dims::pressure);
+      law.linear.kn = dkn == dims::stiffness ? kn : kn * l;  // a 2D stiffness per unit thickness × l
+      positive(r, "kn", law.linear.kn);
+      if (r.has("ks") && r.has("ks_ratio")) r.fail("ks", "give either ks or ks_ratio");
+      if (r.has("ks")) {
+        auto [ks, dks] = r.quantity_either("ks", dims::stiffness, dims::pressure);
+        law.linear.ks = dks == dims::stiffness ? ks : ks * l;
+      } else {
+        law.linear.ks = r.number("ks_ratio", 0.0) * law.linear.kn;  // (K24): K_s = s K_n
+      }
+      non_negative(r, r.has("ks") ? "ks" : "ks_ratio", law.linear.ks);
+      law.linear.mu = mu;
+      law.linear.end_rule = r.choice("end_rule", {"elastic", "total"}, "elastic") == "elastic" ? EndRule::elastic : EndRule::total;
+      if (!law.damping_from_ratio) {
+        if (r.has("eta_s")) {
+          auto [es, ds] = r.quantity_either("eta_s", dims::damping, dims::damping_per_thickness);
+          law.eta_s = ds == dims::damping ? es : es * l;
+        } else {
+          law.eta_s = law.eta_n * std::sqrt(law.linear.ks / law.linear.kn);  // (K25)
+        }
+      }
+    } else {
+      FaceLaw& f = law.face;
+      f.positions = r.choice("positions", {"centres", "ends"}, "centres") == "centres" ? SegmentPositions::centres : SegmentPositions::ends;
+      f.segments = static_cast<int>(r.integer("segments", 1, kMaxSegments, f.positions == SegmentPositions::ends ? 2 : 1));
+      if (f.positions == SegmentPositions::ends && f.segments != 2)
+        r.fail("segments", "face-end positions (M13.2) need exactly 2 segments");
+      f.normal = r.choice("normal_increment", {"exact", "linearised"}, "linearised") == "exact" ? NormalIncrement::exact : NormalIncrement::linearised;
+      const std::string tan = r.choice("tangential_increment", {"exact", "literal", "linearised", "hisatake"}, "linearised");
+      f.tangential = tan == "exact" ? TangentialIncrement::exact : tan == "literal" ? TangentialIncrement::literal
+                   : tan == "hisatake" ? TangentialIncrement::hisatake : TangentialIncrement::linearised;
+      f.tensile_strength = r.quantity("tensile_strength", dims::pressure, 0.0);
+      f.cohesion = r.quantity("cohesion", dims::pressure, 0.0);
+      non_negative(r, "tensile_strength", f.tensile_strength);
+      non_negative(r, "cohesion", f.cohesion);
+      f.tan_phi = mu;
+      f.healing = r.boolean("healing", false);
+      law.bond_at_start = r.boolean("bonded", false);
+      // springs: discrete per segment (N/m) or moduli per unit area per unit strain (Pa), (M6)
+      if (r.has("kn") == r.has("kn_modulus")) r.fail_here("give exactly one of kn (per segment, N/m) or kn_modulus (Pa)");
+      law.face_modulus = r.has("kn_modulus");
+      law.face_kn = law.face_modulus ? r.quantity("kn_modulus", dims::pressure) : r.quantity("kn", dims::stiffness);
+      positive(r, law.face_modulus ? "kn_modulus" : "kn", law.face_kn);
+      const int given = int(r.has("ks")) + int(r.has("ks_ratio")) + int(r.has("ks_modulus"));
+      if (given > 1) r.fail_here("give only one of ks, ks_ratio, ks_modulus");
+      if (r.has("ks_ratio")) law.face_ks = r.number("ks_ratio") * law.face_kn;
+      else if (law.face_modulus) law.face_ks = r.quantity("ks_modulus", dims::pressure, 0.0);
+      else law.face_ks = r.quantity("ks", dims::stiffness, 0.0);
+      if (r.has("ks") && law.face_modulus) r.fail("ks", "with kn_modulus give ks_modulus or ks_ratio");
+      if (r.has("ks_modulus") && !law.face_modulus) r.fail("ks_modulus", "with kn give ks or ks_ratio");
+      non_negative(r, "ks", law.face_ks);
+      if (!law.damping_from_ratio) {
+        law.eta_s = r.has("eta_s") ? r.quantity("eta_s", dims::damping) : law.eta_n * std::sqrt(law.face_ks / law.face_kn);
+      }
+    }
+    const auto idx = static_cast<std::int32_t>(m.laws.size());
+    m.laws.push_back(law);
+    m.law_of_pair[static_cast<std::size_t>(ma) * nm + mb] = idx;
+    m.law_of_pair[static_cast<std::size_t>(mb) * nm + ma] = idx;
+  }
+
+  struct ElementCommon {
+    Shape shape;
+    std::int32_t material;
+    double radius;
+    PreMass pre_mass;
+    double mass;
+    Motion motion;
+    std::int32_t drive;
+    Vec2 velocity;
+    double omega;
+  };
+
+  ElementCommon common(const TableReader& r) {
+    ElementCommon e{};
+    e.shape = r.choice("shape", {"disk", "pre"}, "disk") == "disk" ? Shape::disk : Shape::pre;
+    e.material = material(r, "material");
+    e.radius = r.quantity("radius", dims::length);
+    positive(r, "radius", e.radius);
+    e.pre_mass = r.choice("pre_mass", {"square", "disk"}, "square") == "square" ? PreMass::square : PreMass::disk;
+    if (e.shape == Shape::disk && r.has("pre_mass")) r.fail("pre_mass", "only for shape = \"pre\"");
+    e.mass = r.quantity("mass", dims::mass, 0.0);
+    if (r.has("mass")) positive(r, "mass", e.mass);
+    const std::string motion = r.choice("motion", {"free", "fixed", "driven"}, "free");
+    e.motion = motion == "free" ? Motion::free : motion == "fixed" ? Motion::fixed : Motion::driven;
+    e.drive = -1;
+    if (e.motion == Motion::driven) {
+      const std::string d = r.string("drive");
+      auto it = drive_index.find(d);
+      if (it == drive_index.end()) r.fail("drive", fmt::format("unknown drive \"{}\" (declare it in [[drive]])", d));
+      e.drive = it->second;
+    } else if (r.has("drive")) {
+      r.fail("drive", "only for motion = \"driven\"");
+    }
+    e.velocity = r.vector("velocity", dims::velocity, Vec2{});
+    e.omega = r.quantity("angular_velocity", dims::angular_velocity, 0.0);
+    return e;
+  }
+
+  std::size_t place(const ElementCommon& ec, Vec2 pos, double rotation, std::int32_t group) {
+    Model& m = c.model;
+    const std::size_t i = add_element(m, ec.shape, ec.material, ec.radius, pos, ec.velocity, ec.omega, ec.pre_mass, ec.mass);
+    m.elements.phi[i] = rotation;
+    m.elements.motion[i] = ec.motion;
+    m.elements.drive[i] = ec.drive;
+    m.elements.group[i] = group;
+    return i;
+  }
+};
+
+ProbeKind probe_kind(const std::string& s) {
+  if (s == "value") return ProbeKind::value;
+  if (s == "max") return ProbeKind::max;
+  if (s == "min") return ProbeKind::min;
+  if (s == "restitution") return ProbeKind::restitution;
+  return ProbeKind::contact_duration;
+}
+
+}  // namespace
+
+Case read_case(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  const std::string file = path.string();
+  toml::table root;
+  try {
+    root = toml::parse_file(file);
+  } catch (const toml::parse_error& e) {
+    throw CaseError(fmt::format("{}:{}: syntax: {}", file, e.source().begin.line, e.description()));
+  } catch (const std::exception& e) {
+    throw CaseError(fmt::format("{}: cannot read: {}", file, e.what()));
+  }
+  for (const auto& kv : overrides) apply_override(root, kv);
+
+  Case c;
+  c.path = path;
+  c.overrides = overrides;
+  Reader rd{file, c, {}, {}, {}, 0};
+  Model& m = c.model;
+  TableReader top(root, "", file);
+
+  // [case]
+  if (const toml::table* t = top.table("case")) {
+    TableReader r(*t, "case", file);
+    c.title = r.string("title");
+    c.source = r.string("source", "");
+    r.finish();
+  } else {
+    top.fail("case", "missing [case] table with a title");
+  }
+  // [physics]
+  if (const toml::table* t = top.table("physics")) {
+    TableReader r(*t, "physics", file);
+    m.thickness = r.quantity("thickness", dims::length, 1.0);
+    rd.positive(r, "thickness", m.thickness);
+    if (r.has("gravity") && r.node("gravity")->is_table()) {
+      TableReader g(*r.table("gravity"), "physics.gravity", file);
+      const double mag = g.quantity("magnitude", dims::acceleration);
+      const double dir = g.quantity("direction", dims::angle);
+      m.gravity = {mag * std::cos(dir), mag * std::sin(dir)};
+      g.finish();
+    } else {
+      m.gravity = r.vector("gravity", dims::acceleration, Vec2{});
+    }
+    r.finish();
+  }
+  // [[material]]
+  rd.each(top, "material", [&](TableReader& r, std::size_t) {
+    Material mat;
+    mat.name = r.string("name");
+    mat.density = r.quantity("density", dims::density, 0.0);
+    if (rd.material_index.count(mat.name)) r.fail("name", fmt::format("material \"{}\" declared twice", mat.name));
+    rd.non_negative(r, "density", mat.density);
+    rd.material_index[mat.name] = static_cast<std::int32_t>(m.materials.size());
+    m.materials.push_back(mat);
+  });
+  if (m.materials.empty()) top.fail("material", "missing: declare at least one [[material]]");
+  m.law_of_pair.assign(m.materials.size() * m.materials.size(), -1);
+  // [[drive]]
+  rd.each(top, "drive", [&](TableReader& r, std::size_t) {
+    const std::string name = r.string("name");
+    VelocityHistory h;
+    if (r.has("velocity")) {
+      h.t = {0.0};
+      h.v = {r.vector("velocity", dims::velocity)};
+    } else {
+      const toml::array* ts = r.node("times") ? r.node("times")->as_array() : nullptr;
+      const toml::array* vs = r.node("velocities") ? r.node("velocities")->as_array() : nullptr;
+      r.strings("times");  // marks used (validated below)
+      if (!ts || !vs || ts->size() != vs->size() || ts->empty())
+        r.fail_here("expected velocity = [vx, vy], or times = [...] and velocities = [[vx, vy], ...] of equal length");
+      for (std::size_t k = 0; k < ts->size(); ++k) {
+        const auto* s = ts->get(k)->value_exact<std::string>() ? ts->get(k) : ts->get(k);
+        double t = 0.0;
+        try {
+          t = s->is_string() ? to_si(std::string_view(*s->value_exact<std::string>()), dims::time) : to_si(*s->value<double>(), dims::time);
+        } catch (const std::exception& e) {
+          r.fail("times", e.what());
+        }
+        const toml::array* v = vs->get(k)->as_array();
+        if (!v || v->size() != 2) r.fail("velocities", "expected [vx, vy] pairs");
+        auto comp = [&](const toml::node* n) {
+          try {
+            return n->is_string() ? to_si(std::string_view(*n->value_exact<std::string>()), dims::velocity) : to_si(*n->value<double>(), dims::velocity);
+          } catch (const std::exception& e) {
+            r.fail("velocities", e.what());
+          }
+        };
+        if (!h.t.empty() && t <= h.t.back()) r.fail("times", "must increase strictly");
+        h.t.push_back(t);
+        h.v.push_back({comp(v->get(0)), comp(v->get(1))});
+      }
+      r.mark("velocities");
+    }
+    rd.drive_index[name] = static_cast<std::int32_t>(m.drives.size());
+    m.drives.push_back(h);
+  });
+  // [[contact]]
+  rd.each(top, "contact", [&](TableReader& r, std::size_t) { rd.read_contact(r); });
+  // [[element]]
+  rd.each(top, "element", [&](TableReader& r, std::size_t) {
+    const auto ec = rd.common(r);
+    const Vec2 pos = r.vector("position", dims::length);
+    const double rot = r.quantity("rotation", dims::angle, 0.0);
+    rd.place(ec, pos, rot, -1);
+  });
+  // [[lattice]]: columns × rows elements, axes rotated by `rotation`, spacing 2r by default
+  rd.each(top, "lattice", [&](TableReader& r, std::size_t) {
+    const auto ec = rd.common(r);
+    const Vec2 origin = r.vector("origin", dims::length);
+    const auto nx = r.integer("columns", 1, 100000), ny = r.integer("rows", 1, 100000);
+    const double spacing = r.quantity("spacing", dims::length, 2.0 * ec.radius);
+    rd.positive(r, "spacing", spacing);
+    const double rot = r.quantity("rotation", dims::angle, 0.0);
+    const bool bonded = r.boolean("bonded", true);
+    const std::int32_t group = bonded ? rd.next_group++ : -1;
+    const Vec2 ex{std::cos(rot), std::sin(rot)}, ey = perp(ex);
+    for (std::int64_t b = 0; b < ny; ++b)
+      for (std::int64_t a = 0; a < nx; ++a)
+        rd.place(ec, origin + ex * (spacing * a) + ey * (spacing * b), rot, group);
+  });
+  // [[row]]: count elements from `start` along `step`
+  rd.each(top, "row", [&](TableReader& r, std::size_t) {
+    const auto ec = rd.common(r);
+    const Vec2 start = r.vector("start", dims::length);
+    const Vec2 step = r.vector("step", dims::length);
+    const auto n = r.integer("count", 1, 10000000);
+    for (std::int64_t k = 0; k < n; ++k) rd.place(ec, start + step * static_cast<double>(k), 0.0, -1);
+  });
+  if (m.elements.size() == 0) top.fail_here("no elements: give [[element]], [[lattice]] or [[row]] tables");
+  // [[wall]]
+  rd.each(top, "wall", [&](TableReader& r, std::size_t k) {
+    Wall w;
+    w.name = r.string("name", fmt::format("wall{}", k));
+    const std::string type = r.choice("type", {"segment", "point"}, "segment");
+    w.kind = type == "segment" ? WallKind::segment : WallKind::point;
+    if (w.kind == WallKind::segment) {
+      w.a = r.vector("from", dims::length);
+      w.b = r.vector("to", dims::length);
+      if (w.a == w.b) r.fail("to", "a segment wall needs two different end points");
+    } else {
+      w.a = w.b = r.vector("at", dims::length);
+    }
+    w.material = rd.material(r, "material");
+    if (r.has("drive")) {
+      const std::string d = r.string("drive");
+      auto it = rd.drive_index.find(d);
+      if (it == rd.drive_index.end()) r.fail("drive", fmt::format("unknown drive \"{}\"", d));
+      w.drive = it->second;
+    }
+    if (rd.wall_index.count(w.name)) r.fail("name", fmt::format("wall \"{}\" declared twice", w.name));
+    rd.wall_index[w.name] = static_cast<std::int32_t>(m.walls.size());
+    m.walls.push_back(w);
+  });
+  // every material pair that can meet needs a law
+  {
+    std::vector<int> used(m.materials.size(), 0), wall_used(m.materials.size(), 0);
+    for (auto mat : m.elements.material) ++used[static_cast<std::size_t>(mat)];
+    for (const auto& w : m.walls) wall_used[static_cast<std::size_t>(w.material)] = 1;
+    for (std::size_t a = 0; a < used.size(); ++a) {
+      for (std::size_t b = 0; b < used.size(); ++b) {
+        const bool elements_meet = used[a] && used[b] && (a != b || used[a] > 1);
+        if (!used[a] || !(elements_meet || wall_used[b])) continue;
+        if (m.law_of_pair[a * used.size() + b] < 0)
+          top.fail("contact", fmt::format("missing [[contact]] between \"{}\" and \"{}\"", m.materials[a].name, m.materials[b].name));
+      }
+    }
+    for (std::size_t i = 0; i < m.elements.size(); ++i)
+      if (!(m.elements.mass[i] > 0.0) || !std::isfinite(m.elements.mass[i]))
+        top.fail("material", fmt::format("element {} has no mass: give its material a density or the element a mass", i));
+  }
+  // [numerics]
+  if (const toml::table* t = top.table("numerics")) {
+    TableReader r(*t, "numerics", file);
+    Numerics& n = m.numerics;
+    n.integrator = r.choice("integrator", {"K18", "K19"}, "K18") == "K18" ? Integrator::k18 : Integrator::k19;
+    n.velocity_start = r.choice("velocity_start", {"plain", "staggered"}, "plain") == "plain" ? VelocityStart::plain : VelocityStart::staggered;
+    n.dt = r.quantity("dt", dims::time);
+    rd.positive(r, "dt", n.dt);
+    n.duration = r.quantity("duration", dims::time);
+    rd.positive(r, "duration", n.duration);
+    n.skin = r.quantity("skin", dims::length, 0.0);
+    rd.non_negative(r, "skin", n.skin);
+    n.allow_unstable = r.boolean("allow_unstable", false);
+    n.energy_limit = r.quantity("energy_limit", dims::energy, 0.0);
+    r.finish();
+  } else {
+    top.fail("numerics", "missing [numerics] table (dt, duration)");
+  }
+  // [output]
+  if (const toml::table* t = top.table("output")) {
+    TableReader r(*t, "output", file);
+    c.output.every = r.integer("every", 0, std::int64_t{1} << 40, 0);
+    c.output.series = r.strings("series");
+    c.output.vtk = r.boolean("vtk", true);
+    c.output.vtk_every = r.integer("vtk_every", 0, std::int64_t{1} << 40, 0);
+    r.finish();
+  }
+  // [stop]
+  if (const toml::table* t = top.table("stop")) {
+    TableReader r(*t, "stop", file);
+    c.stop.settled_increment = r.optional_quantity("settled_increment", dims::length);
+    c.stop.settle_min_time = r.quantity("settle_min_time", dims::time, 0.0);
+    r.finish();
+  }
+  // [[probe]]
+  rd.each(top, "probe", [&](TableReader& r, std::size_t) {
+    ProbeSpec p;
+    p.name = r.string("name");
+    p.kind = probe_kind(r.choice("kind", {"value", "max", "min", "restitution", "contact_duration"}, "value"));
+    if (p.kind == ProbeKind::value || p.kind == ProbeKind::max || p.kind == ProbeKind::min) {
+      p.quantity = r.string("quantity");
+      if (p.kind == ProbeKind::value) p.at = r.optional_quantity("at", dims::time);
+    } else {
+      p.element = static_cast<std::uint32_t>(r.integer("element", 0, static_cast<std::int64_t>(m.elements.size()) - 1));
+      if (r.has("wall") == r.has("other")) r.fail_here("give exactly one of other (an element index) or wall (a wall name)");
+      if (r.has("wall")) {
+        const std::string w = r.string("wall");
+        auto it = rd.wall_index.find(w);
+        if (it == rd.wall_index.end()) r.fail("wall", fmt::format("unknown wall \"{}\"", w));
+        p.other = static_cast<std::uint32_t>(it->second);
+        p.other_is_wall = true;
+      } else {
+        p.other = static_cast<std::uint32_t>(r.integer("other", 0, static_cast<std::int64_t>(m.elements.size()) - 1));
+      }
+    }
+    for (const auto& q : c.probes)
+      if (q.name == p.name) r.fail("name", fmt::format("probe \"{}\" declared twice", p.name));
+    c.probes.push_back(p);
+  });
+  top.finish();
+
+  // The resolved case, for provenance.
+  std::ostringstream os;
+  os << toml::json_formatter{root};
+  c.resolved = nlohmann::json::parse(os.str());
+  return c;
+}
+
+double check_case(const Case& c) {
+  const Model& m = c.model;
+  const Elements& e = m.elements;
+  const std::string file = c.path.string();
+  // Overlapping geometry at the start: fixed bodies must not overlap each other; free bodies may
+  // touch, but an overlap above 5 % of the smaller radius is almost certainly a mistake.
+  std::vector<CandidatePair> pairs;
+  NeighbourSearch ns;
+  ns.build(e, 0.0, pairs);
+  for (const auto& p : pairs) {
+    const double d = std::hypot(e.x[p.j] - e.x[p.i], e.y[p.j] - e.y[p.i]);
+    const double overlap = e.radius[p.i] + e.radius[p.j] - d;
+    const bool both_fixed = e.motion[p.i] != Motion::free && e.motion[p.j] != Motion::free;
+    const double tol = both_fixed ? 1e-9 * std::min(e.radius[p.i], e.radius[p.j])
+                                  : 0.05 * std::min(e.radius[p.i], e.radius[p.j]);
+    if (overlap > tol)
+      throw CaseError(fmt::format("{}: elements {} and {} overlap by {:.4g} m at the start{}", file, p.i, p.j, overlap,
+                                  both_fixed ? " (both fixed: overlapping fixed geometry)" : " (more than 5 % of a radius)"));
+  }
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    for (const Wall& w : m.walls) {
+      const Vec2 ctr{e.x[i], e.y[i]};
+      const double overlap = e.radius[i] - norm(closest_point(w, ctr) - ctr);
+      const double tol = e.motion[i] != Motion::free ? 1e-9 * e.radius[i] : 0.05 * e.radius[i];
+      if (overlap > tol)
+        throw CaseError(fmt::format("{}: element {} overlaps wall \"{}\" by {:.4g} m at the start", file, i, w.name, overlap));
+    }
+  }
+  // The time step against the stability limit of the assembly.
+  Simulation sim(m);
+  const double limit = sim.stability_limit();
+  if (m.numerics.dt > limit && !m.numerics.allow_unstable) {
+    throw CaseError(fmt::format(
+        "{}: numerics.dt: {:.6g} s is above the stability limit {:.6g} s of {} for this assembly "
+        "(Gershgorin bound over the contacts that exist or are about to form; references.md §1.5). "
+        "Use numerics.dt <= {:.6g} s, or numerics.allow_unstable = true for a stability study.",
+        file, m.numerics.dt, limit, m.numerics.integrator == Integrator::k18 ? "K18" : "K19", limit));
+  }
+  return limit;
+}
+
+}  // namespace dem

@@ -1,0 +1,66 @@
+#pragma once
+// Case files: one TOML file describes a run (cases/README.md documents every key). Values are SI
+// numbers or strings with units ("25 mm", "12 kN/mm"). Every key can be overridden from the command
+// line (`--set numerics.dt=1e-7`, `--set "contact.0.kn=12 kN/mm"`). Every error is reported before
+// anything runs, as `file:line: key: what was expected`.
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "dem/model.hpp"
+
+namespace dem {
+
+class CaseError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class ProbeKind { value, max, min, restitution, contact_duration };
+
+/// A quantity of interest computed during a run (written to summary.json under "probes").
+struct ProbeSpec {
+  std::string name;
+  ProbeKind kind = ProbeKind::value;
+  std::string quantity;          // value/max/min: a series quantity name
+  std::optional<double> at;      // value: time [s] (linear interpolation); none: end of run
+  std::uint32_t element = 0;     // restitution / contact_duration: element i
+  std::uint32_t other = 0;       //   and element j or wall j
+  bool other_is_wall = false;
+};
+
+struct OutputSpec {
+  std::int64_t every = 0;              // write a series row every this many steps (0: only first/last)
+  std::vector<std::string> series;     // quantity names (output.cpp lists them)
+  std::int64_t vtk_every = 0;          // snapshot every this many steps (0: first and last only)
+  bool vtk = true;
+};
+
+struct StopSpec {
+  std::optional<double> settled_increment;  // stop when the mean |Δu|, |Δv| per step falls below [m]
+  double settle_min_time = 0.0;             // not before this time [s]
+};
+
+struct Case {
+  std::filesystem::path path;
+  std::string title, source;
+  Model model;
+  OutputSpec output;
+  StopSpec stop;
+  std::vector<ProbeSpec> probes;
+  std::vector<std::string> overrides;
+  nlohmann::json resolved;  // the case after overrides, as read (for provenance)
+};
+
+/// Reads a case file and applies `key=value` overrides. Throws CaseError with file:line: key: ...
+Case read_case(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
+
+/// Checks what can only be checked on the assembled model: initial overlaps, the time-step limit.
+/// Throws CaseError. Returns the assembly's stability limit [s].
+double check_case(const Case& c);
+
+}  // namespace dem

@@ -1,0 +1,32 @@
+#pragma once
+// Elements stored as contiguous arrays, one per field (structure of arrays).
+// Kiyama's explicit cycle (model.md §1, references.md §1.4) keeps, per element, the position that
+// already includes the latest increment, that increment, and the velocity of the previous step.
+#include <cstdint>
+#include <vector>
+
+namespace dem {
+
+enum class Shape : std::uint8_t { disk, pre };          // PRE: pseudo-rectangle element (model.md §2)
+enum class Motion : std::uint8_t { free, fixed, driven };  // driven: prescribed velocity
+
+struct Elements {
+  // state
+  std::vector<double> x, y, phi;     // centre [m], rotation [rad], counter-clockwise positive
+  std::vector<double> dx, dy, dphi;  // increment of the current step, already in x, y, phi [m, rad]
+  std::vector<double> vx, vy, omega; // velocity of the previous step v_{k-1} [m/s, rad/s]
+  // forces of the current step
+  std::vector<double> fx, fy, moment;  // [N, N·m]
+  // properties
+  std::vector<double> radius, mass, inertia, inv_mass, inv_inertia;  // [m, kg, kg·m², 1/kg, 1/(kg·m²)]
+  std::vector<std::int32_t> material;  // index into the materials table
+  std::vector<std::int32_t> group;     // bond group (a generated lattice), -1 for none
+  std::vector<Shape> shape;
+  std::vector<Motion> motion;
+  std::vector<std::int32_t> drive;     // index into the velocity histories for driven elements, else -1
+  std::vector<std::uint8_t> active;    // 0 once removed from the run (e.g. discharged from a silo)
+
+  std::size_t size() const { return x.size(); }
+};
+
+}  // namespace dem

@@ -1,0 +1,87 @@
+#pragma once
+// Everything a run needs, resolved to SI: materials, contact laws per material pair, elements,
+// walls, numerics. Built by the case reader (case_file.hpp) or directly in tests.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dem/elements.hpp"
+#include "dem/face_contact.hpp"
+#include "dem/linear_contact.hpp"
+#include "dem/vec2.hpp"
+#include "dem/velocity_history.hpp"
+#include "dem/wall.hpp"
+
+namespace dem {
+
+enum class Integrator : std::uint8_t {
+  k18,  // Δu_t = v_t Δt: Cundall's symplectic Euler (K18)
+  k19   // Δu_t = (Δu_{t−Δt} + v_t Δt)/2: Kiyama's averaged increment (K19)
+};
+enum class VelocityStart : std::uint8_t {
+  plain,     // v_{−1} = v(0)
+  staggered  // v_{−1} = v(0) − a(0)Δt/2, so that v_0 = v(Δt/2) (references.md §1.4)
+};
+enum class LawKind : std::uint8_t { linear, face };
+enum class MassBasis : std::uint8_t {
+  reduced,  // η = 2ζ√(m_eff K): ζ is the damping ratio of the pair
+  particle  // Kiyama's η = 2ζ√(m K) with the particle mass (K20); m = mean of the pair, m for walls
+};
+
+struct Material {
+  std::string name;
+  double density = 0.0;  // [kg/m³]
+};
+
+/// The contact law of one material pair.
+struct PairLaw {
+  LawKind kind = LawKind::linear;
+  LinearSpringDashpot linear;  // kind == linear: kn, ks [N/m], mu, end rule
+  FaceLaw face;                // kind == face
+  double face_kn = 0.0, face_ks = 0.0;  // kind == face: discrete springs per segment [N/m] (M6), or
+  bool face_modulus = false;            //   if face_modulus: k_n, k_s per unit area per unit strain [Pa]
+  // Damping: explicit dashpots, or a damping ratio (h_n for the face law, (M7.3)).
+  bool damping_from_ratio = true;
+  double damping_ratio = 0.0;
+  MassBasis mass_basis = MassBasis::reduced;
+  double eta_n = 0.0, eta_s = 0.0;  // explicit dashpots [N·s/m] (per segment for the face law)
+  Onset onset = Onset::increment;
+  bool bond_at_start = false;  // face law: contacts present at the start are bonded (intact links),
+                               // also with walls and across lattices
+};
+
+struct Numerics {
+  Integrator integrator = Integrator::k18;
+  VelocityStart velocity_start = VelocityStart::plain;
+  double dt = 0.0;        // [s]
+  double duration = 0.0;  // [s]
+  double skin = 0.0;      // Verlet skin of the neighbour search [m] (0: a quarter of the smallest radius)
+  bool allow_unstable = false;  // run even above the stability limit (for stability studies)
+  double energy_limit = 0.0;    // stop when the total energy exceeds this [J] (0: automatic)
+};
+
+struct Model {
+  std::vector<Material> materials;
+  std::vector<PairLaw> laws;
+  std::vector<std::int32_t> law_of_pair;  // materials.size()² entries, index into laws or −1
+  Elements elements;
+  std::vector<Wall> walls;
+  std::vector<VelocityHistory> drives;
+  Vec2 gravity;             // [m/s²]
+  double thickness = 1.0;   // element depth l [m] (model.md: "per unit thickness" is l = 1)
+  Numerics numerics;
+
+  std::int32_t law_index(std::int32_t mat_a, std::int32_t mat_b) const {
+    return law_of_pair[static_cast<std::size_t>(mat_a) * materials.size() + mat_b];
+  }
+};
+
+/// Adds one element with its mass and inertia from the material density: a disk (K: m = ρπr²l,
+/// I = ½mr²), or a PRE with square mass (M17: m = 4r²lρ, I = (2/3)r²m) or disk mass (M18).
+/// mass_override > 0 replaces the computed mass (inertia scales with it). Returns its index.
+enum class PreMass : std::uint8_t { square, disk };
+std::size_t add_element(Model& m, Shape shape, std::int32_t material, double radius, Vec2 position,
+                        Vec2 velocity = {}, double omega = 0.0, PreMass pre_mass = PreMass::square,
+                        double mass_override = 0.0);
+
+}  // namespace dem

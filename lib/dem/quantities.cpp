@@ -1,0 +1,125 @@
+#include "dem/quantities.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace dem {
+
+namespace {
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (std::size_t k = 0; k <= s.size(); ++k)
+    if (k == s.size() || s[k] == '.') {
+      out.push_back(s.substr(start, k - start));
+      start = k + 1;
+    }
+  return out;
+}
+
+/// "e12" → 12, else −1.
+long element_ref(const std::string& s, const Model& m) {
+  if (s.size() < 2 || s[0] != 'e' || s.find_first_not_of("0123456789", 1) != std::string::npos) return -1;
+  const long i = std::stol(s.substr(1));
+  if (i < 0 || static_cast<std::size_t>(i) >= m.elements.size())
+    throw std::invalid_argument(fmt::format("element {} does not exist (the case has {})", i, m.elements.size()));
+  return i;
+}
+
+long wall_ref(const std::string& s, const Model& m) {
+  for (std::size_t k = 0; k < m.walls.size(); ++k)
+    if (m.walls[k].name == s) return static_cast<long>(k);
+  return -1;
+}
+
+}  // namespace
+
+QuantityFn compile_quantity(const std::string& name, const Model& m) {
+  const auto p = split(name);
+  auto bad = [&](const std::string& why) {
+    return std::invalid_argument(fmt::format("quantity \"{}\": {}", name, why));
+  };
+  if (name == "t") return [](const Simulation& s) { return s.time(); };
+  if (name == "step") return [](const Simulation& s) { return static_cast<double>(s.steps()); };
+  if (name == "contacts") return [](const Simulation& s) { return static_cast<double>(s.contact_count()); };
+  if (name == "energy.kinetic") return [](const Simulation& s) { return s.energies().kinetic; };
+  if (name == "energy.potential") return [](const Simulation& s) { return s.energies().potential; };
+  if (name == "energy.elastic") return [](const Simulation& s) { return s.energies().elastic; };
+  if (name == "energy.total") return [](const Simulation& s) { return s.energies().total(); };
+  if (name == "mean_increment")
+    return [](const Simulation& s) {
+      const Elements& e = s.model().elements;
+      double sum = 0.0;
+      std::size_t n = 0;
+      for (std::size_t i = 0; i < e.size(); ++i)
+        if (e.active[i] && e.motion[i] == Motion::free) {
+          sum += std::abs(e.dx[i]) + std::abs(e.dy[i]);
+          n += 2;
+        }
+      return n ? sum / static_cast<double>(n) : 0.0;
+    };
+  long i = -1;
+  try {
+    i = p.empty() ? -1 : element_ref(p[0], m);
+  } catch (const std::invalid_argument& e) {
+    throw bad(e.what());
+  }
+  if (i >= 0) {
+    const auto u = static_cast<std::size_t>(i);
+    if (p.size() == 2) {
+      const std::string& f = p[1];
+      if (f == "x") return [u](const Simulation& s) { return s.model().elements.x[u]; };
+      if (f == "y") return [u](const Simulation& s) { return s.model().elements.y[u]; };
+      if (f == "phi") return [u](const Simulation& s) { return s.model().elements.phi[u]; };
+      if (f == "vx") return [u](const Simulation& s) { return s.model().elements.vx[u]; };
+      if (f == "vy") return [u](const Simulation& s) { return s.model().elements.vy[u]; };
+      if (f == "omega") return [u](const Simulation& s) { return s.model().elements.omega[u]; };
+      if (f == "fx") return [u](const Simulation& s) { return s.model().elements.fx[u]; };
+      if (f == "fy") return [u](const Simulation& s) { return s.model().elements.fy[u]; };
+      if (f == "moment") return [u](const Simulation& s) { return s.model().elements.moment[u]; };
+      throw bad("unknown element field (x, y, phi, vx, vy, omega, fx, fy, moment, gap.<other>, fn.<other>, fs.<other>)");
+    }
+    if (p.size() == 3 && (p[1] == "gap" || p[1] == "fn" || p[1] == "fs")) {
+      long j = -1;
+      try {
+        j = element_ref(p[2], m);
+      } catch (const std::invalid_argument& e) {
+        throw bad(e.what());
+      }
+      const long w = j < 0 ? wall_ref(p[2], m) : -1;
+      if (j < 0 && w < 0) throw bad(fmt::format("\"{}\" is neither an element (e<i>) nor a wall name", p[2]));
+      const bool wall = j < 0;
+      const auto o = static_cast<std::uint32_t>(wall ? w : j);
+      if (p[1] == "gap")
+        return [u, o, wall](const Simulation& s) {
+          const Elements& e = s.model().elements;
+          const Vec2 c{e.x[u], e.y[u]};
+          if (wall) return norm(closest_point(s.model().walls[o], c) - c) - e.radius[u];
+          return std::hypot(e.x[o] - e.x[u], e.y[o] - e.y[u]) - e.radius[u] - e.radius[o];
+        };
+      const bool normal = p[1] == "fn";
+      return [u, o, wall, normal](const Simulation& s) {
+        const ContactView c = s.contact(static_cast<std::uint32_t>(u), o, wall);
+        return normal ? c.fn : c.fs;
+      };
+    }
+    throw bad("expected e<i>.<field> or e<i>.gap|fn|fs.<other>");
+  }
+  if (p.size() == 2) {
+    const long w = wall_ref(p[0], m);
+    if (w >= 0) {
+      const auto k = static_cast<std::size_t>(w);
+      if (p[1] == "fx") return [k](const Simulation& s) { return s.model().walls[k].force.x; };
+      if (p[1] == "fy") return [k](const Simulation& s) { return s.model().walls[k].force.y; };
+      if (p[1] == "x") return [k](const Simulation& s) { return s.model().walls[k].a.x; };
+      if (p[1] == "y") return [k](const Simulation& s) { return s.model().walls[k].a.y; };
+      throw bad("unknown wall field (fx, fy, x, y)");
+    }
+  }
+  throw bad("unknown quantity (see lib/dem/quantities.hpp for the names)");
+}
+
+}  // namespace dem

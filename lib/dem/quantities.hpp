@@ -1,0 +1,22 @@
+#pragma once
+// Named quantities of a running simulation, for the time-series CSV and probes:
+//   t, step, contacts, energy.kinetic, energy.potential, energy.elastic, energy.total,
+//   mean_increment                     mean of |Δx| and |Δy| over active elements [m]
+//   e<i>.x|y|phi|vx|vy|omega|fx|fy|moment     element i (state after the step)
+//   e<i>.gap.<wall>  e<i>.gap.e<j>     surface gap (negative: overlap) [m]
+//   e<i>.fn.<wall>   e<i>.fs.<wall>    contact normal / shear force with a wall (or e<j>) [N]
+//   <wall>.fx  <wall>.fy               force of the elements on the wall [N]
+//   <wall>.x   <wall>.y                wall position (first end point) [m]
+#include <functional>
+#include <string>
+
+#include "dem/simulation.hpp"
+
+namespace dem {
+
+using QuantityFn = std::function<double(const Simulation&)>;
+
+/// Compiles a quantity name against a model; throws std::invalid_argument naming what is wrong.
+QuantityFn compile_quantity(const std::string& name, const Model& m);
+
+}  // namespace dem

@@ -1,0 +1,588 @@
+#include "dem/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "dem/stability.hpp"
+
+namespace dem {
+
+namespace {
+
+inline std::uint64_t key(std::uint32_t i, std::uint32_t j) { return (std::uint64_t{i} << 32) | j; }
+
+/// Merges the old (sorted) slots into the new (sorted) candidate keys: a candidate keeps its old
+/// history if it had one; an old slot that must outlive the rebuild is kept even without candidate.
+template <class Slot, class Candidates>
+void merge(std::vector<Slot>& slots, std::vector<Slot>& scratch, const Candidates& cand) {
+  scratch.clear();
+  std::size_t o = 0;
+  for (const Slot& c : cand) {
+    const std::uint64_t kc = key(c.i, c.j);
+    while (o < slots.size() && key(slots[o].i, slots[o].j) < kc) {
+      if (must_keep(slots[o])) scratch.push_back(slots[o]);
+      ++o;
+    }
+    if (o < slots.size() && key(slots[o].i, slots[o].j) == kc) {
+      scratch.push_back(slots[o++]);
+    } else {
+      scratch.push_back(c);
+    }
+  }
+  for (; o < slots.size(); ++o)
+    if (must_keep(slots[o])) scratch.push_back(slots[o]);
+  slots.swap(scratch);
+}
+
+/// Ends a contact: the slot stays (it is a candidate pair) but forgets its history.
+template <class Slot>
+void reset_slot(Slot& s) {
+  Slot fresh;
+  fresh.i = s.i;
+  fresh.j = s.j;
+  fresh.law = s.law;
+  s = fresh;
+}
+
+inline double reduced_mass(double a, double b) { return a * b / (a + b); }
+
+}  // namespace
+
+Simulation::Simulation(Model model) : m_(std::move(model)) {
+  const Elements& e = m_.elements;
+  if (m_.numerics.dt <= 0.0) throw std::invalid_argument("numerics.dt must be positive");
+  double rmin = std::numeric_limits<double>::max();
+  for (std::size_t i = 0; i < e.size(); ++i) rmin = std::min(rmin, e.radius[i]);
+  skin_ = m_.numerics.skin > 0.0 ? m_.numerics.skin : (e.size() ? 0.25 * rmin : 0.0);
+  // Initial increments (references.md §1.4, "plain" start): Δx_0 = v(0)Δt.
+  Elements& w = m_.elements;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    if (w.motion[i] == Motion::fixed) {
+      w.vx[i] = w.vy[i] = w.omega[i] = 0.0;
+    } else if (w.motion[i] == Motion::driven) {
+      const Vec2 v = m_.drives[static_cast<std::size_t>(w.drive[i])].at(0.0);
+      w.vx[i] = v.x;
+      w.vy[i] = v.y;
+      w.omega[i] = 0.0;
+    }
+    w.dx[i] = w.vx[i] * m_.numerics.dt;
+    w.dy[i] = w.vy[i] * m_.numerics.dt;
+    w.dphi[i] = w.omega[i] * m_.numerics.dt;
+  }
+  for (Wall& wl : m_.walls)
+    wl.increment = wl.drive >= 0 ? m_.drives[static_cast<std::size_t>(wl.drive)].at(0.0) * m_.numerics.dt
+                                 : Vec2{};
+  rebuild();
+}
+
+bool Simulation::needs_rebuild() const {
+  const Elements& e = m_.elements;
+  double max_d2 = 0.0;
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    const double ddx = e.x[i] - x_ref_[i], ddy = e.y[i] - y_ref_[i];
+    max_d2 = std::max(max_d2, ddx * ddx + ddy * ddy);
+  }
+  double max_w = 0.0;
+  for (std::size_t k = 0; k < m_.walls.size(); ++k) {
+    max_w = std::max(max_w, norm(m_.walls[k].a - wall_ref_[k]));
+  }
+  const double d = std::sqrt(max_d2);
+  return 2.0 * d >= skin_ || d + max_w >= skin_;
+}
+
+void Simulation::rebuild() {
+  ++rebuilds_;
+  const Elements& e = m_.elements;
+  search_.build(e, skin_, candidates_);
+  // Fresh slots for every candidate, routed by the pair's law.
+  static thread_local std::vector<LinearSlot> lin;
+  static thread_local std::vector<FaceSlot> face;
+  lin.clear();
+  face.clear();
+  for (const CandidatePair& p : candidates_) {
+    const std::int32_t law = m_.law_index(e.material[p.i], e.material[p.j]);
+    if (law < 0) continue;
+    if (m_.laws[static_cast<std::size_t>(law)].kind == LawKind::linear) {
+      LinearSlot s;
+      s.i = p.i, s.j = p.j, s.law = law;
+      lin.push_back(s);
+    } else {
+      FaceSlot s;
+      s.i = p.i, s.j = p.j, s.law = law;
+      face.push_back(s);
+    }
+  }
+  merge(linear_pairs_, linear_scratch_, lin);
+  merge(face_pairs_, face_scratch_, face);
+  // Element–wall candidates.
+  lin.clear();
+  face.clear();
+  for (std::uint32_t i = 0; i < e.size(); ++i) {
+    if (!e.active[i]) continue;
+    const Vec2 c{e.x[i], e.y[i]};
+    for (std::uint32_t k = 0; k < m_.walls.size(); ++k) {
+      const Wall& w = m_.walls[k];
+      const double cut = e.radius[i] + skin_;
+      const Vec2 d = closest_point(w, c) - c;
+      if (dot(d, d) >= cut * cut) continue;
+      const std::int32_t law = m_.law_index(e.material[i], w.material);
+      if (law < 0) continue;
+      if (m_.laws[static_cast<std::size_t>(law)].kind == LawKind::linear) {
+        LinearSlot s;
+        s.i = i, s.j = k, s.law = law;
+        lin.push_back(s);
+      } else {
+        FaceSlot s;
+        s.i = i, s.j = k, s.law = law;
+        face.push_back(s);
+      }
+    }
+  }
+  merge(linear_walls_, linear_scratch_, lin);
+  merge(face_walls_, face_scratch_, face);
+  x_ref_ = e.x;
+  y_ref_ = e.y;
+  wall_ref_.resize(m_.walls.size());
+  for (std::size_t k = 0; k < m_.walls.size(); ++k) wall_ref_[k] = m_.walls[k].a;
+}
+
+void Simulation::start_linear(LinearSlot& s, double overlap, double du_n, double du_s, double mass_i,
+                              double mass_j) const {
+  const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
+  s.touching = 1;
+  s.h = {};
+  if (law.damping_from_ratio) {
+    // (K20, K25): η_n = 2ζ√(m K_n), η_s = η_n √(K_s/K_n); m per the mass basis.
+    double m = 0.0;
+    if (mass_j <= 0.0) m = mass_i;  // wall
+    else m = law.mass_basis == MassBasis::reduced ? reduced_mass(mass_i, mass_j) : 0.5 * (mass_i + mass_j);
+    s.eta_n = 2.0 * law.damping_ratio * std::sqrt(m * law.linear.kn);
+    s.eta_s = law.linear.kn > 0.0 ? s.eta_n * std::sqrt(law.linear.ks / law.linear.kn) : 0.0;
+  } else {
+    s.eta_n = law.eta_n;
+    s.eta_s = law.eta_s;
+  }
+  // Contacts present at the start, or formed with the overlap onset, start from the geometric
+  // overlap: e_n = K_n δ after this step's increment is added (references.md §1.4: e_0 = K x(0)).
+  if (step_ == 0 || law.onset == Onset::overlap) {
+    s.h.en = law.linear.kn * overlap - law.linear.kn * du_n;
+    s.h.es = -law.linear.ks * du_s;
+  }
+}
+
+void Simulation::sweep_linear_pairs(double inv_dt) {
+  Elements& e = m_.elements;
+  for (LinearSlot& s : linear_pairs_) {
+    const std::uint32_t i = s.i, j = s.j;
+    const double ddx = e.x[j] - e.x[i], ddy = e.y[j] - e.y[i];
+    const double rs = e.radius[i] + e.radius[j];
+    const double r2 = ddx * ddx + ddy * ddy;
+    if (r2 > rs * rs || !e.active[i] || !e.active[j]) {  // (K3): not touching
+      if (s.touching) reset_slot(s);
+      continue;
+    }
+    const double dist = std::sqrt(r2);
+    const double nx = ddx / dist, ny = ddy / dist;  // cos α, sin α (K3): from i towards j
+    const double ux = e.dx[i] - e.dx[j], uy = e.dy[i] - e.dy[j];
+    const double du_n = ux * nx + uy * ny;                                      // (K5)
+    const double du_s = -ux * ny + uy * nx + e.radius[i] * e.dphi[i] + e.radius[j] * e.dphi[j];
+    if (!s.touching) start_linear(s, rs - dist, du_n, du_s, e.mass[i], e.mass[j]);
+    const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
+    const ContactForce f = linear_contact_force(law.linear, s.eta_n, s.eta_s, du_n, du_s, inv_dt, s.h);
+    s.f = f;
+    s.nx = nx;
+    s.ny = ny;
+    // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
+    const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;
+    e.fx[i] += fx;
+    e.fy[i] += fy;
+    e.fx[j] -= fx;
+    e.fy[j] -= fy;
+    e.moment[i] -= e.radius[i] * f.fs;
+    e.moment[j] -= e.radius[j] * f.fs;
+  }
+}
+
+void Simulation::sweep_linear_walls(double inv_dt) {
+  Elements& e = m_.elements;
+  for (LinearSlot& s : linear_walls_) {
+    const std::uint32_t i = s.i;
+    Wall& w = m_.walls[s.j];
+    const Vec2 c{e.x[i], e.y[i]};
+    const Vec2 d = closest_point(w, c) - c;
+    const double r2 = dot(d, d), r = e.radius[i];
+    if (r2 > r * r || !e.active[i] || r2 == 0.0) {
+      if (s.touching) reset_slot(s);
+      continue;
+    }
+    const double dist = std::sqrt(r2);
+    const double nx = d.x / dist, ny = d.y / dist;  // from the element towards the wall
+    const double ux = e.dx[i] - w.increment.x, uy = e.dy[i] - w.increment.y;
+    const double du_n = ux * nx + uy * ny;  // (K5) with the wall as element j, r_j = 0
+    const double du_s = -ux * ny + uy * nx + r * e.dphi[i];
+    if (!s.touching) start_linear(s, r - dist, du_n, du_s, e.mass[i], 0.0);
+    const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
+    const ContactForce f = linear_contact_force(law.linear, s.eta_n, s.eta_s, du_n, du_s, inv_dt, s.h);
+    s.f = f;
+    s.nx = nx;
+    s.ny = ny;
+    const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;
+    e.fx[i] += fx;
+    e.fy[i] += fy;
+    e.moment[i] -= r * f.fs;
+    w.force.x -= fx;
+    w.force.y -= fy;
+  }
+}
+
+namespace {
+
+FaceConstants face_constants(const PairLaw& law, double r_i, double r_j, double m_eff, double thickness) {
+  FaceConstants c;
+  const int n = law.face.segments;
+  c.half_length = r_j > 0.0 ? std::min(r_i, r_j) : r_i;
+  const double area = 2.0 * c.half_length * thickness;  // (M1): A = 2 r l
+  c.segment_area = area / n;
+  if (law.face_modulus) {  // (M6): K = k A / ((r1 + r2) N); for a wall (r1 + r2) → r2 (M19)
+    c.kn = law.face_kn * area / ((r_i + r_j) * n);
+    c.ks = law.face_ks * area / ((r_i + r_j) * n);
+  } else {
+    c.kn = law.face_kn;
+    c.ks = law.face_ks;
+  }
+  if (law.damping_from_ratio) {
+    c.eta_n = 2.0 * law.damping_ratio * std::sqrt(c.kn * n * m_eff) / n;  // (M7.3)
+    c.eta_s = c.kn > 0.0 ? c.eta_n * std::sqrt(c.ks / c.kn) : 0.0;         // (M7.4)
+  } else {
+    c.eta_n = law.eta_n;
+    c.eta_s = law.eta_s;
+  }
+  return c;
+}
+
+}  // namespace
+
+void Simulation::sweep_face_pairs(double inv_dt) {
+  Elements& e = m_.elements;
+  for (FaceSlot& s : face_pairs_) {
+    const std::uint32_t i = s.i, j = s.j;
+    if (!e.active[i] || !e.active[j]) {
+      if (s.touching) reset_slot(s);
+      continue;
+    }
+    const double ddx = e.x[j] - e.x[i], ddy = e.y[j] - e.y[i];
+    const double rs = e.radius[i] + e.radius[j];
+    const double r2 = ddx * ddx + ddy * ddy;
+    if (!s.touching && r2 > rs * rs) continue;  // not touching → touching when D ≤ r1 + r2
+    const double dist = std::sqrt(r2);
+    const double nx = ddx / dist, ny = ddy / dist;
+    const double ux = e.dx[i] - e.dx[j], uy = e.dy[i] - e.dy[j];
+    FaceKinematics k;
+    k.du_projected = ux * nx + uy * ny;
+    k.dv_translation = -ux * ny + uy * nx;
+    const double ox = ddx - (e.dx[j] - e.dx[i]), oy = ddy - (e.dy[j] - e.dy[i]);  // centre line before the step
+    k.du_exact = std::hypot(ox, oy) - dist;
+    k.dbeta = std::atan2(ox * ddy - oy * ddx, ox * ddx + oy * ddy);
+    k.dphi1 = e.dphi[i];
+    k.dphi2 = e.dphi[j];
+    k.r1 = e.radius[i];
+    k.r2 = e.radius[j];
+    const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
+    if (!s.touching) {
+      s.touching = 1;
+      s.c = face_constants(law, e.radius[i], e.radius[j], reduced_mass(e.mass[i], e.mass[j]), m_.thickness);
+      const bool bonded = step_ == 0 && (law.bond_at_start || (e.group[i] >= 0 && e.group[i] == e.group[j]));
+      const double u0 = (step_ == 0 || law.onset == Onset::overlap) ? (rs - dist) - k.du_projected : 0.0;
+      start_face(law.face, s.c, u0, bonded, s.h);
+    }
+    const FaceForce f = face_contact_force(law.face, s.c, k, inv_dt, s.h);
+    s.f = f;
+    s.nx = nx;
+    s.ny = ny;
+    if (f.links == 0) s.touching = 0;  // touching → not touching when no link remains
+    const double fx = -f.p * nx + f.q * ny, fy = -f.p * ny - f.q * nx;  // (M12)
+    e.fx[i] += fx;
+    e.fy[i] += fy;
+    e.fx[j] -= fx;
+    e.fy[j] -= fy;
+    e.moment[i] += -e.radius[i] * f.q + f.p_moment;
+    e.moment[j] += -e.radius[j] * f.q - f.p_moment;
+  }
+}
+
+void Simulation::sweep_face_walls(double inv_dt) {
+  Elements& e = m_.elements;
+  for (FaceSlot& s : face_walls_) {
+    const std::uint32_t i = s.i;
+    Wall& w = m_.walls[s.j];
+    if (!e.active[i]) {
+      if (s.touching) reset_slot(s);
+      continue;
+    }
+    const Vec2 c{e.x[i], e.y[i]};
+    const Vec2 d = closest_point(w, c) - c;
+    const double r2 = dot(d, d), r = e.radius[i];
+    if ((!s.touching && r2 > r * r) || r2 == 0.0) continue;
+    const double dist = std::sqrt(r2);
+    const double nx = d.x / dist, ny = d.y / dist;
+    const double ux = e.dx[i] - w.increment.x, uy = e.dy[i] - w.increment.y;
+    FaceKinematics k;  // (M19): the wall replaces one element; its frame does not turn
+    k.du_projected = ux * nx + uy * ny;
+    k.du_exact = k.du_projected;
+    k.dv_translation = -ux * ny + uy * nx;
+    k.dv_frame = k.dv_translation;
+    k.dphi1 = e.dphi[i];
+    k.r1 = r;
+    const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
+    if (!s.touching) {
+      s.touching = 1;
+      s.c = face_constants(law, r, 0.0, e.mass[i], m_.thickness);
+      const double u0 = (step_ == 0 || law.onset == Onset::overlap) ? (r - dist) - k.du_projected : 0.0;
+      start_face(law.face, s.c, u0, step_ == 0 && law.bond_at_start, s.h);
+    }
+    const FaceForce f = face_contact_force(law.face, s.c, k, inv_dt, s.h);
+    s.f = f;
+    s.nx = nx;
+    s.ny = ny;
+    if (f.links == 0) s.touching = 0;
+    const double fx = -f.p * nx + f.q * ny, fy = -f.p * ny - f.q * nx;
+    e.fx[i] += fx;
+    e.fy[i] += fy;
+    e.moment[i] += -r * f.q + f.p_moment;
+    w.force.x -= fx;
+    w.force.y -= fy;
+  }
+}
+
+void Simulation::integrate() {
+  Elements& e = m_.elements;
+  const double dt = m_.numerics.dt;
+  // references.md §1.4: a staggered start takes half a velocity step first, v_0 = v(Δt/2).
+  const double dt_v = (step_ == 0 && m_.numerics.velocity_start == VelocityStart::staggered) ? 0.5 * dt : dt;
+  const bool k19 = m_.numerics.integrator == Integrator::k19;
+  const std::size_t n = e.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!e.active[i]) continue;
+    switch (e.motion[i]) {
+      case Motion::free:  // (K17): v_t = v_{t−Δt} + a_t Δt
+        e.vx[i] += dt_v * e.fx[i] * e.inv_mass[i];
+        e.vy[i] += dt_v * e.fy[i] * e.inv_mass[i];
+        e.omega[i] += dt_v * e.moment[i] * e.inv_inertia[i];
+        break;
+      case Motion::fixed:
+        e.vx[i] = e.vy[i] = e.omega[i] = 0.0;
+        break;
+      case Motion::driven: {
+        const Vec2 v = m_.drives[static_cast<std::size_t>(e.drive[i])].at(time_ + 0.5 * dt);
+        e.vx[i] = v.x;
+        e.vy[i] = v.y;
+        e.omega[i] = 0.0;
+        break;
+      }
+    }
+    if (k19 && e.motion[i] == Motion::free) {  // (K19): averaged increment
+      e.dx[i] = 0.5 * (e.dx[i] + e.vx[i] * dt);
+      e.dy[i] = 0.5 * (e.dy[i] + e.vy[i] * dt);
+      e.dphi[i] = 0.5 * (e.dphi[i] + e.omega[i] * dt);
+    } else {  // (K18)
+      e.dx[i] = e.vx[i] * dt;
+      e.dy[i] = e.vy[i] * dt;
+      e.dphi[i] = e.omega[i] * dt;
+    }
+    e.x[i] += e.dx[i];
+    e.y[i] += e.dy[i];
+    e.phi[i] += e.dphi[i];
+  }
+  for (Wall& w : m_.walls) {
+    w.increment = w.drive >= 0 ? m_.drives[static_cast<std::size_t>(w.drive)].at(time_ + 0.5 * dt) * dt : Vec2{};
+    w.a = w.a + w.increment;
+    w.b = w.b + w.increment;
+  }
+}
+
+void Simulation::step() {
+  if (step_ > 0 && needs_rebuild()) rebuild();
+  Elements& e = m_.elements;
+  const std::size_t n = e.size();
+  const Vec2 g = m_.gravity;
+  for (std::size_t i = 0; i < n; ++i) {  // (K15): gravity
+    e.fx[i] = e.mass[i] * g.x;
+    e.fy[i] = e.mass[i] * g.y;
+    e.moment[i] = 0.0;
+  }
+  for (Wall& w : m_.walls) w.force = {};
+  const double inv_dt = 1.0 / m_.numerics.dt;
+  sweep_linear_pairs(inv_dt);
+  sweep_face_pairs(inv_dt);
+  sweep_linear_walls(inv_dt);
+  sweep_face_walls(inv_dt);
+  integrate();
+  ++step_;
+  time_ = static_cast<double>(step_) * m_.numerics.dt;
+}
+
+Energies Simulation::energies() const {
+  const Elements& e = m_.elements;
+  Energies en;
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    if (!e.active[i]) continue;
+    en.kinetic += 0.5 * e.mass[i] * (e.vx[i] * e.vx[i] + e.vy[i] * e.vy[i]) +
+                  0.5 * e.inertia[i] * e.omega[i] * e.omega[i];
+    en.potential -= e.mass[i] * (m_.gravity.x * e.x[i] + m_.gravity.y * e.y[i]);
+  }
+  auto lin = [&](const LinearSlot& s) {
+    if (!s.touching) return;
+    const LinearSpringDashpot& l = m_.laws[static_cast<std::size_t>(s.law)].linear;
+    if (l.kn > 0.0) en.elastic += 0.5 * s.h.en * s.h.en / l.kn;
+    if (l.ks > 0.0) en.elastic += 0.5 * s.h.es * s.h.es / l.ks;
+  };
+  auto face = [&](const FaceSlot& s) {
+    if (!s.touching) return;
+    const int n = m_.laws[static_cast<std::size_t>(s.law)].face.segments;
+    for (int k = 0; k < n; ++k) {
+      const SegmentState& g = s.h.seg[static_cast<std::size_t>(k)];
+      if (!g.linked) continue;
+      if (s.c.kn > 0.0) en.elastic += 0.5 * g.pe * g.pe / s.c.kn;
+      if (s.c.ks > 0.0) en.elastic += 0.5 * g.qe * g.qe / s.c.ks;
+    }
+  };
+  for (const auto& s : linear_pairs_) lin(s);
+  for (const auto& s : linear_walls_) lin(s);
+  for (const auto& s : face_pairs_) face(s);
+  for (const auto& s : face_walls_) face(s);
+  return en;
+}
+
+std::vector<ContactView> Simulation::contacts() const {
+  std::vector<ContactView> out;
+  for (const auto& s : linear_pairs_)
+    if (s.touching) out.push_back({s.i, s.j, false, s.nx, s.ny, s.f.fn, s.f.fs, 1});
+  for (const auto& s : face_pairs_)
+    if (s.touching) out.push_back({s.i, s.j, false, s.nx, s.ny, s.f.p, s.f.q, s.f.links});
+  for (const auto& s : linear_walls_)
+    if (s.touching) out.push_back({s.i, s.j, true, s.nx, s.ny, s.f.fn, s.f.fs, 1});
+  for (const auto& s : face_walls_)
+    if (s.touching) out.push_back({s.i, s.j, true, s.nx, s.ny, s.f.p, s.f.q, s.f.links});
+  return out;
+}
+
+std::size_t Simulation::contact_count() const {
+  std::size_t n = 0;
+  for (const auto& s : linear_pairs_) n += s.touching;
+  for (const auto& s : face_pairs_) n += s.touching;
+  for (const auto& s : linear_walls_) n += s.touching;
+  for (const auto& s : face_walls_) n += s.touching;
+  return n;
+}
+
+ContactView Simulation::contact(std::uint32_t i, std::uint32_t j, bool wall) const {
+  if (!wall && j < i) std::swap(i, j);
+  auto find = [&](const auto& slots) -> const auto* {
+    auto it = std::lower_bound(slots.begin(), slots.end(), key(i, j),
+                               [](const auto& s, std::uint64_t k) { return key(s.i, s.j) < k; });
+    return (it != slots.end() && it->i == i && it->j == j && it->touching) ? &*it : nullptr;
+  };
+  if (const auto* s = find(wall ? linear_walls_ : linear_pairs_))
+    return {i, j, wall, s->nx, s->ny, s->f.fn, s->f.fs, 1};
+  if (const auto* s = find(wall ? face_walls_ : face_pairs_))
+    return {i, j, wall, s->nx, s->ny, s->f.p, s->f.q, s->f.links};
+  return {i, j, wall, 0.0, 0.0, 0.0, 0.0, 0};
+}
+
+}  // namespace dem
+
+// ---------------------------------------------------------------------------------------------------
+// Time-step guard (stability.hpp): Gershgorin row sums of the mass-normalised stiffness and damping
+// matrices, per degree of freedom, over the contacts of the assembly.
+namespace dem {
+
+namespace {
+
+struct Rows {
+  std::vector<double> k, c;  // 3 per element: x, y, φ
+};
+
+/// Adds one spring–dashpot acting on the relative displacement b·q (b over the DOFs of i and j).
+void add_spring(Rows& rows, const Elements& e, std::uint32_t i, std::int64_t j, const double bi[3],
+                const double bj[3], double k, double c) {
+  const double si[3] = {std::sqrt(e.inv_mass[i]), std::sqrt(e.inv_mass[i]), std::sqrt(e.inv_inertia[i])};
+  double ti[3], tj[3] = {0, 0, 0}, sum = 0.0;
+  for (int a = 0; a < 3; ++a) sum += std::abs(ti[a] = bi[a] * si[a]);
+  if (j >= 0) {
+    const auto jj = static_cast<std::size_t>(j);
+    const double sj[3] = {std::sqrt(e.inv_mass[jj]), std::sqrt(e.inv_mass[jj]), std::sqrt(e.inv_inertia[jj])};
+    for (int a = 0; a < 3; ++a) sum += std::abs(tj[a] = bj[a] * sj[a]);
+  }
+  for (int a = 0; a < 3; ++a) {
+    rows.k[3 * i + a] += k * std::abs(ti[a]) * sum;
+    rows.c[3 * i + a] += c * std::abs(ti[a]) * sum;
+    if (j >= 0) {
+      rows.k[3 * static_cast<std::size_t>(j) + a] += k * std::abs(tj[a]) * sum;
+      rows.c[3 * static_cast<std::size_t>(j) + a] += c * std::abs(tj[a]) * sum;
+    }
+  }
+}
+
+}  // namespace
+
+double Simulation::stability_limit() const {
+  const Elements& e = m_.elements;
+  Rows rows;
+  rows.k.assign(3 * e.size(), 0.0);
+  rows.c.assign(3 * e.size(), 0.0);
+  auto add_contact = [&](std::uint32_t i, std::int64_t j, Vec2 n, const PairLaw& law) {
+    const Vec2 t = perp(n);
+    const double ri = e.radius[i], rj = j >= 0 ? e.radius[static_cast<std::size_t>(j)] : 0.0;
+    const double mi = e.mass[i], mj = j >= 0 ? e.mass[static_cast<std::size_t>(j)] : 0.0;
+    if (law.kind == LawKind::linear) {
+      LinearSlot s;
+      s.law = static_cast<std::int32_t>(&law - m_.laws.data());
+      start_linear(s, 0.0, 0.0, 0.0, mi, mj);
+      const double bn_i[3] = {n.x, n.y, 0.0}, bn_j[3] = {-n.x, -n.y, 0.0};
+      const double bt_i[3] = {t.x, t.y, ri}, bt_j[3] = {-t.x, -t.y, rj};
+      add_spring(rows, e, i, j, bn_i, bn_j, law.linear.kn, s.eta_n);
+      add_spring(rows, e, i, j, bt_i, bt_j, law.linear.ks, s.eta_s);
+    } else {
+      const FaceConstants c = face_constants(law, ri, rj, j >= 0 ? reduced_mass(mi, mj) : mi, m_.thickness);
+      for (int k = 0; k < law.face.segments; ++k) {
+        const double lever = c.half_length * segment_xi(law.face.positions, law.face.segments, k);
+        const double bn_i[3] = {n.x, n.y, -lever}, bn_j[3] = {-n.x, -n.y, lever};
+        const double bt_i[3] = {t.x, t.y, ri}, bt_j[3] = {-t.x, -t.y, rj};
+        add_spring(rows, e, i, j, bn_i, bn_j, c.kn, c.eta_n);
+        add_spring(rows, e, i, j, bt_i, bt_j, c.ks, c.eta_s);
+      }
+    }
+  };
+  // Every candidate pair of the neighbour list counts: contacts that exist and those about to form.
+  for (const CandidatePair& p : candidates_) {
+    const std::int32_t law = m_.law_index(e.material[p.i], e.material[p.j]);
+    if (law < 0) continue;
+    Vec2 d{e.x[p.j] - e.x[p.i], e.y[p.j] - e.y[p.i]};
+    const double len = norm(d);
+    add_contact(p.i, p.j, len > 0.0 ? d * (1.0 / len) : Vec2{1.0, 0.0}, m_.laws[static_cast<std::size_t>(law)]);
+  }
+  for (std::uint32_t i = 0; i < e.size(); ++i) {
+    if (!e.active[i]) continue;
+    const Vec2 ctr{e.x[i], e.y[i]};
+    for (const Wall& w : m_.walls) {
+      const Vec2 d = closest_point(w, ctr) - ctr;
+      const double len = norm(d);
+      if (len >= e.radius[i] + skin_ || len == 0.0) continue;
+      const std::int32_t law = m_.law_index(e.material[i], w.material);
+      if (law >= 0) add_contact(i, -1, d * (1.0 / len), m_.laws[static_cast<std::size_t>(law)]);
+    }
+  }
+  double limit = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    if (!e.active[i] || e.motion[i] != Motion::free) continue;
+    for (int a = 0; a < 3; ++a)
+      limit = std::min(limit, stable_dt_gershgorin(m_.numerics.integrator, rows.k[3 * i + a], rows.c[3 * i + a]));
+  }
+  return limit;
+}
+
+}  // namespace dem

@@ -1,0 +1,78 @@
+#pragma once
+// The explicit DEM cycle of Kiyama & Fujimura (model.md §1, references.md §1.4), for disks and
+// pseudo-rectangle elements: contact forces from the increments of the step (K5–K15, M3–M12),
+// velocities (K17), next increments (K18 or K19), positions.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dem/contact_slots.hpp"
+#include "dem/model.hpp"
+#include "dem/neighbour_search.hpp"
+
+namespace dem {
+
+struct Energies {
+  double kinetic = 0.0;    // ½ m v² + ½ I ω² with the velocities of the last step [J]
+  double potential = 0.0;  // −Σ m g·x [J]
+  double elastic = 0.0;    // energy stored in the contact springs [J]
+  double total() const { return kinetic + potential + elastic; }
+};
+
+/// One contact for outputs: who, where, which forces.
+struct ContactView {
+  std::uint32_t i, j;
+  bool wall;
+  double nx, ny;   // normal from i towards j
+  double fn, fs;   // normal (compression positive) and shear force [N]
+  int links;       // linked segments (1 for a linear contact)
+};
+
+class Simulation {
+ public:
+  explicit Simulation(Model model);
+
+  /// Advances one step. Throws std::runtime_error if the assembly becomes unstable at this Δt.
+  void step();
+
+  const Model& model() const { return m_; }
+  Model& model() { return m_; }
+  double time() const { return time_; }
+  std::int64_t steps() const { return step_; }
+  double dt() const { return m_.numerics.dt; }
+
+  Energies energies() const;
+  std::vector<ContactView> contacts() const;
+  std::size_t contact_count() const;  // touching pairs and wall contacts
+  /// Normal and shear force of the contact between element i and element j (or wall j); zero if none.
+  ContactView contact(std::uint32_t i, std::uint32_t j, bool wall) const;
+
+  /// The stability limit of the whole assembly for the chosen integrator [s] (Gershgorin bound over
+  /// the current candidate contacts, stability.hpp); infinity if no contact is possible.
+  double stability_limit() const;
+  std::int64_t rebuilds() const { return rebuilds_; }
+
+ private:
+  void rebuild();
+  bool needs_rebuild() const;
+  void sweep_linear_pairs(double inv_dt);
+  void sweep_face_pairs(double inv_dt);
+  void sweep_linear_walls(double inv_dt);
+  void sweep_face_walls(double inv_dt);
+  void integrate();
+  void start_linear(LinearSlot& s, double overlap, double du_n, double du_s, double mass_i, double mass_j) const;
+
+  Model m_;
+  NeighbourSearch search_;
+  std::vector<CandidatePair> candidates_;
+  std::vector<LinearSlot> linear_pairs_, linear_walls_, linear_scratch_;
+  std::vector<FaceSlot> face_pairs_, face_walls_, face_scratch_;
+  std::vector<double> x_ref_, y_ref_;  // positions at the last rebuild
+  std::vector<Vec2> wall_ref_;
+  double skin_ = 0.0;
+  double time_ = 0.0;
+  std::int64_t step_ = 0;
+  std::int64_t rebuilds_ = 0;
+};
+
+}  // namespace dem

@@ -1,0 +1,158 @@
+// write_report: read the studies, render their plots with gnuplot, write index.html and index.md.
+#include "report.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <stdexcept>
+#include <system_error>
+
+#include "html_writer.hpp"
+#include "markdown_writer.hpp"
+#include "report_content.hpp"
+#include "study_plots.hpp"
+#include "study_result.hpp"
+#include "text_format.hpp"
+
+#ifndef GNUPLOT_EXECUTABLE
+#define GNUPLOT_EXECUTABLE "gnuplot"
+#endif
+
+namespace report {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* default_title = "DEM verification report";
+
+// Files this generator writes into figures/ (earlier runs' leftovers would be linked by nobody).
+void remove_old_figures(const fs::path& figures_dir) {
+  std::error_code ignored;
+  for (const auto& entry : fs::directory_iterator(figures_dir, ignored)) {
+    const auto extension = entry.path().extension();
+    if (entry.is_regular_file() && (extension == ".svg" || extension == ".gp"))
+      fs::remove(entry.path(), ignored);
+  }
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) throw std::runtime_error("report: cannot write " + path.string());
+}
+
+// Renders one plot (if any) into out_dir/file; the figure's note says what happened otherwise.
+class FigureRenderer {
+ public:
+  FigureRenderer(fs::path out_dir, fs::path gnuplot)
+      : out_dir_(std::move(out_dir)), gnuplot_(std::move(gnuplot)) {}
+
+  RenderedFigure render(const std::optional<Plot>& plot, std::string title, const std::string& file,
+                        const std::string& why_not, const std::string& note) {
+    RenderedFigure figure;
+    figure.title = std::move(title);
+    if (!plot) {
+      figure.note = why_not;
+      return figure;
+    }
+    const auto outcome = render_svg(*plot, out_dir_ / file, gnuplot_);
+    if (!outcome.ok) {
+      figure.note = "figure not drawn: " + outcome.error;
+      std::cerr << "report: warning: " << file << ": " << outcome.error << "\n";
+      return figure;
+    }
+    figure.file = file;
+    figure.svg = outcome.svg;
+    figure.note = note;
+    ++figures_written_;
+    return figure;
+  }
+  int figures_written() const { return figures_written_; }
+
+ private:
+  fs::path out_dir_, gnuplot_;
+  int figures_written_ = 0;
+};
+
+// File stem per study: its folder as a slug, made unique if two folders share a slug.
+std::string unique_stem(const std::string& folder, std::set<std::string>& used) {
+  std::string stem = slug(folder);
+  for (int i = 2; used.count(stem); ++i) stem = fmt::format("{}-{}", slug(folder), i);
+  used.insert(stem);
+  return stem;
+}
+
+void render_study_plots(StudyReport& study, const std::string& stem, FigureRenderer& renderer) {
+  const auto& result = study.source.result;
+  const auto& series = array_field(result, "series");
+  for (std::size_t k = 0; k < series.size(); ++k) {
+    std::string why_not, note;
+    const auto plot = convergence_plot(series[k], why_not, note);
+    auto title = text_field(series[k], "name");
+    if (title.empty()) title = fmt::format("series {}", k + 1);
+    study.convergence.push_back(renderer.render(
+        plot, title, fmt::format("figures/{}-convergence-{}.svg", stem, k + 1), why_not, note));
+  }
+  const auto& figures = array_field(result, "figures");
+  for (std::size_t k = 0; k < figures.size(); ++k) {
+    std::string why_not;
+    const auto plot = figure_plot(figures[k], why_not);
+    auto title = text_field(figures[k], "title");
+    const auto id = text_field(figures[k], "id");
+    if (title.empty()) title = id.empty() ? fmt::format("figure {}", k + 1) : id;
+    const auto file = id.empty()
+                          ? fmt::format("figures/{}-figure-{}.svg", stem, k + 1)
+                          : fmt::format("figures/{}-figure-{}-{}.svg", stem, k + 1, slug(id));
+    study.figures.push_back(renderer.render(plot, title, file, why_not, ""));
+  }
+}
+
+}  // namespace
+
+Written write_report(const Options& options) {
+  return write_report(options, GNUPLOT_EXECUTABLE);
+}
+
+Written write_report(const Options& options, const fs::path& gnuplot) {
+  if (!fs::is_directory(options.studies_dir))
+    throw std::runtime_error("report: studies folder not found: " + options.studies_dir.string());
+  const fs::path figures_dir = options.out_dir / "figures";
+  fs::create_directories(figures_dir);
+  remove_old_figures(figures_dir);
+
+  auto studies = read_study_results(options.studies_dir);
+  ReportContent content;
+  content.title = options.title.empty() ? default_title : options.title;
+  content.header = header_fields(options.provenance, studies, options.studies_dir);
+
+  FigureRenderer renderer(options.out_dir, gnuplot);
+  std::set<std::string> used_stems;
+  for (auto& source : studies) {
+    StudyReport study{std::move(source), {}, {}};
+    if (study.source.readable()) {
+      try {
+        render_study_plots(study, unique_stem(study.source.folder, used_stems), renderer);
+      } catch (const std::exception& e) {  // e.g. a file system error: keep the other studies
+        study.convergence.clear();
+        study.figures.clear();
+        study.source.read_error = std::string("plots failed: ") + e.what();
+        std::cerr << "report: warning: " << study.source.path.string() << ": " << e.what() << "\n";
+      }
+    }
+    content.studies.push_back(std::move(study));
+  }
+
+  Written written;
+  written.html = options.out_dir / "index.html";
+  written.markdown = options.out_dir / "index.md";
+  write_text(written.html, html_page(content));
+  write_text(written.markdown, markdown_page(content));
+  written.studies = static_cast<int>(content.studies.size());
+  written.figures = renderer.figures_written();
+  return written;
+}
+
+}  // namespace report

@@ -1,0 +1,35 @@
+// Report generator: reads every <studies_dir>/*/result.json (format: verification/RESULT_FORMAT.md)
+// and writes one self-contained HTML page (<out_dir>/index.html, figures inlined as SVG) and its
+// Markdown twin (<out_dir>/index.md, linking <out_dir>/figures/*.svg). Plots are made by gnuplot.
+// The report never reruns a study; it is generated, never hand-edited.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace report {
+
+struct Options {
+  std::filesystem::path studies_dir;  // holds one folder per study, each with a result.json
+  std::filesystem::path out_dir;      // created if missing; figures/ inside is regenerated
+  std::string title;                  // page title ("" -> "DEM verification report")
+  nlohmann::json provenance;          // optional: code_version, build_type, machine, date, ...
+};
+
+struct Written {
+  std::filesystem::path html, markdown;
+  int studies;  // result.json files found (readable or not)
+  int figures;  // SVG figures written
+};
+
+// Throws std::runtime_error if studies_dir is not a directory or the outputs cannot be written.
+// Malformed result files and failed gnuplot calls are reported in the page (and on stderr), not
+// thrown.
+Written write_report(const Options& options);
+
+// The same with another gnuplot executable than the one found by CMake (a bare name is looked up
+// on PATH).
+Written write_report(const Options& options, const std::filesystem::path& gnuplot);
+
+}  // namespace report

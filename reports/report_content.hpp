@@ -1,0 +1,83 @@
+// What goes into the report, assembled once and written twice (HTML and Markdown).
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "study_result.hpp"
+
+namespace report {
+
+struct RenderedFigure {
+  std::string title;
+  std::string file;  // relative to out_dir ("figures/<study>-convergence-1.svg"); "" if none
+  std::string svg;   // the SVG text for inlining; "" if none
+  std::string note;  // shown with (or instead of) the figure: why skipped, gnuplot failure
+};
+
+struct StudyReport {
+  StudyResult source;
+  std::vector<RenderedFigure> convergence;  // one per entry of "series", same order
+  std::vector<RenderedFigure> figures;      // one per entry of "figures", same order
+};
+
+struct HeaderField {
+  std::string label, value;
+};
+
+struct ReportContent {
+  std::string title;
+  std::vector<HeaderField> header;
+  std::vector<StudyReport> studies;
+};
+
+struct Counts {
+  int checks_passed = 0, checks_failed = 0, checks_other = 0;
+  int studies_passed = 0, studies_failed = 0, studies_unreadable = 0, studies_other = 0;
+};
+Counts count_outcomes(const ReportContent& content);
+
+// Header lines: code version, build type, machine (report provenance first, else the studies'),
+// report date, date range of the study runs, studies folder, then any other provenance keys.
+std::vector<HeaderField> header_fields(const nlohmann::json& provenance,
+                                       const std::vector<StudyResult>& studies,
+                                       const std::filesystem::path& studies_dir);
+
+// Anchor of a study's section in the HTML page.
+std::string study_anchor(const StudyResult& study);
+
+// Display name: the "study" field, else the folder name.
+std::string study_name(const StudyResult& study);
+
+// Cells of one check row, formatted (shared by the HTML and Markdown writers).
+struct CheckRow {
+  std::string quantity, reference, dem, error, tolerance, tolerance_reason, order, status, note;
+};
+CheckRow check_row(const nlohmann::json& check);
+
+// Setup of a study as label/value pairs: kind, case, parameter, each setup entry, overrides.
+std::vector<HeaderField> setup_fields(const nlohmann::json& result);
+
+// Per-level rows of a series: level, h, value, error, observed order.
+std::vector<std::vector<std::string>> series_level_rows(const nlohmann::json& series);
+inline const std::vector<std::string> series_level_columns{"level", "h", "value", "error",
+                                                           "observed order"};
+// One line: fitted vs expected order, Richardson value, GCI, asymptotic ratio, reference.
+std::string series_summary(const nlohmann::json& series);
+
+// A "tables" entry: columns + rows (cells formatted), or preformatted text.
+struct TableData {
+  std::string title;
+  std::vector<std::string> columns;  // as many as the widest row (blank headers if undeclared)
+  std::vector<std::vector<std::string>> rows;
+  std::optional<std::string> preformatted;
+};
+TableData table_data(const nlohmann::json& table);
+
+// Lowercase status for CSS classes: pass, fail, unreadable, na.
+std::string status_class(const std::string& status);
+
+}  // namespace report

@@ -1,0 +1,38 @@
+// Reading the studies' result.json files, and tolerant access to their fields: a missing or
+// mistyped field reads as absent, so one odd file cannot stop the report.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace report {
+
+struct StudyResult {
+  std::string folder;          // study folder name (unique; used for anchors and file names)
+  std::filesystem::path path;  // the result.json
+  nlohmann::json result;       // parsed content (an object when readable)
+  std::string read_error;      // empty when readable
+  bool readable() const { return read_error.empty(); }
+};
+
+// Every <studies_dir>/*/result.json, sorted by folder name; folders without one are skipped.
+// Unparsable files are returned with read_error set (and a warning on stderr).
+std::vector<StudyResult> read_study_results(const std::filesystem::path& studies_dir);
+
+// Tolerant field access (j may be any JSON value).
+std::string text_field(const nlohmann::json& j, const char* key);
+std::optional<double> number_field(const nlohmann::json& j, const char* key);
+std::optional<bool> bool_field(const nlohmann::json& j, const char* key);
+const nlohmann::json& array_field(const nlohmann::json& j, const char* key);   // [] if absent
+const nlohmann::json& object_field(const nlohmann::json& j, const char* key);  // {} if absent
+std::vector<std::optional<double>> number_array(const nlohmann::json& j, const char* key);
+
+// "PASS", "FAIL" or "n/a" for a check or study object (its "passed" field; a study without one
+// fails if any of its checks fails).
+std::string check_status(const nlohmann::json& check);
+std::string study_status(const StudyResult& study);  // also "UNREADABLE"
+
+}  // namespace report

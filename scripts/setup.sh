@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Installs the Debian packages the testbed needs (only those missing). Safe to run repeatedly.
+# Package list and CMake targets: ../shared/spec/toolchain.md.
+set -euo pipefail
+pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtomlplusplus-dev
+      libcli11-dev nlohmann-json3-dev libfmt-dev gnuplot-nox)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+fi

@@ -1,0 +1,204 @@
+// Unit tests of the report generator (reports/report.hpp) on fixture result.json files written to a
+// temporary folder: one passing study (series + figure + tables), one failing, one malformed.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "report.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh folder under the system temp dir, removed at the end of the test.
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    std::random_device seed;
+    path = fs::temp_directory_path() / ("dem2d_report_test_" + std::to_string(seed()));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
+void write(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+}
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
+  return n;
+}
+
+const char* passing_study = R"json({
+  "study": "impact_restitution",
+  "title": "Normal impact: restitution & contact duration",
+  "requirement": "The linear spring-dashpot reproduces the analytic restitution coefficient.",
+  "kind": "refinement",
+  "case": "cases/impact/disk_wall.toml",
+  "parameter": "numerics.dt",
+  "reference": "closed form e(zeta) (K18), reference/",
+  "setup": { "zeta": 0.3, "radius [m]": 0.01, "law": "linear_dashpot" },
+  "provenance": { "code_version": "v0.1-3-gabc", "build_type": "Release", "date": "2024-05-01T10:00:00Z",
+                  "machine": "testhost", "overrides": ["numerics.dt=1e-6"] },
+  "passed": true,
+  "checks": [
+    { "quantity": "e, zeta=0.3 (K18)", "reference": 0.3723261049, "dem": 0.37241, "error": 8.4e-5,
+      "error_kind": "abs", "tolerance": 1e-3, "tolerance_reason": "first order in dt at dt = t_c/50",
+      "observed_order": 1.01, "expected_order": 1.0, "order_band": 0.15, "passed": true, "note": "" }
+  ],
+  "series": [
+    { "name": "e, zeta=0.3 (K18)", "parameter": "dt [s]", "h": [1e-5, 5e-6, 2.5e-6],
+      "value": [0.36, 0.366, 0.369], "reference": 0.3723, "error": [1.23e-2, 6.3e-3, 3.3e-3],
+      "observed_order": [null, 0.965, 0.933], "fitted_order": 0.95, "expected_order": 1.0,
+      "richardson": 0.372, "gci_fine": 0.0012, "asymptotic_ratio": 1.003, "asymptotic": true }
+  ],
+  "figures": [
+    { "id": "delta_t", "title": "Overlap history delta_t", "xlabel": "t [s]", "ylabel": "delta [mm]",
+      "logx": false, "logy": false,
+      "curves": [ { "label": "reference", "x": [0, 1, 2, 3], "y": [0, 0.8, 0.9, 0.1], "style": "lines" },
+                  { "label": "DEM", "x": [0, 1, 2, 3], "y": [0, 0.79, 0.91, 0.12], "style": "points" } ] }
+  ],
+  "tables": [
+    { "title": "Mode map", "columns": ["alpha", "ref", "dem"], "rows": [["5", "stick", "stick"], [10, "slip", "slip"]] },
+    { "title": "Mode map (text)", "preformatted": "alpha  mode\n5      <stick>" }
+  ]
+})json";
+
+const char* failing_study = R"json({
+  "study": "block_on_slope",
+  "title": "Block on a slope",
+  "requirement": "Sliding distance matches Sagaseta.",
+  "kind": "single",
+  "case": "cases/slope/block.toml",
+  "parameter": "",
+  "reference": "Sagaseta closed form",
+  "provenance": { "code_version": "v0.1-3-gabc", "build_type": "Release", "date": "2024-05-01T11:00:00Z",
+                  "machine": "testhost" },
+  "passed": false,
+  "checks": [
+    { "quantity": "slide distance [mm]", "reference": 12.5, "dem": 14.1, "error": 0.128,
+      "error_kind": "rel", "tolerance": 0.02, "tolerance_reason": "2 % from the paper",
+      "observed_order": null, "expected_order": null, "order_band": null, "passed": false,
+      "note": "friction law mismatch?" }
+  ],
+  "series": [
+    { "name": "all zero", "parameter": "dt [s]", "h": [1e-3, 5e-4], "value": [1, 1], "reference": 1,
+      "error": [0, null], "observed_order": [null, null], "fitted_order": null, "expected_order": 2,
+      "richardson": null, "gci_fine": null, "asymptotic_ratio": null, "asymptotic": null }
+  ]
+})json";
+
+}  // namespace
+
+TEST_CASE("report of two studies: HTML self-contained, Markdown links figures", "[report]") {
+  TempDir tmp;
+  const auto studies = tmp.path / "studies";
+  write(studies / "impact_restitution" / "result.json", passing_study);
+  write(studies / "block_on_slope" / "result.json", failing_study);
+  fs::create_directories(studies / "no_result_yet");  // skipped: no result.json
+
+  report::Options options;
+  options.studies_dir = studies;
+  options.out_dir = tmp.path / "report";
+  options.title = "Fixture report";
+  options.provenance = {{"code_version", "v0.1-3-gabc"}, {"build_type", "Release"}};
+  const auto written = report::write_report(options);
+
+  CHECK(written.studies == 2);
+  CHECK(written.figures == 2);  // the all-zero series is skipped
+  REQUIRE(fs::exists(written.html));
+  const auto html = read(written.html);
+  CHECK(html.find("impact_restitution") != std::string::npos);
+  CHECK(html.find("block_on_slope") != std::string::npos);
+  CHECK(count(html, "<svg") == 2);
+  CHECK(html.find("FAIL") != std::string::npos);
+  CHECK(html.find("PASS") != std::string::npos);
+  CHECK(html.find("slope 1") != std::string::npos);  // reference slope label, inside the SVG
+  CHECK(html.find("all errors are zero or missing") != std::string::npos);
+  CHECK(html.find("restitution &amp; contact") != std::string::npos);  // escaped
+  CHECK(html.find("&lt;stick&gt;") != std::string::npos);
+  CHECK(html.find("v0.1-3-gabc") != std::string::npos);
+  CHECK(html.find("1 passed") != std::string::npos);
+  CHECK(html.find("1 failed") != std::string::npos);
+  // Self-contained: no external resources, no http at all (SVG namespaces are stripped).
+  CHECK(html.find("http") == std::string::npos);
+  CHECK_FALSE(std::regex_search(html, std::regex(R"(\b(src|href)\s*=\s*["'](?!#))")));
+  CHECK(html.find("<?xml") == std::string::npos);
+
+  REQUIRE(fs::exists(written.markdown));
+  const auto markdown = read(written.markdown);
+  const std::regex image_link(R"(!\[[^\]]*\]\(([^)]+\.svg)\))");
+  int links = 0;
+  for (auto it = std::sregex_iterator(markdown.begin(), markdown.end(), image_link);
+       it != std::sregex_iterator(); ++it) {
+    const auto file = options.out_dir / (*it)[1].str();
+    CAPTURE(file);
+    CHECK((*it)[1].str().rfind("figures/", 0) == 0);
+    CHECK(fs::exists(file));
+    CHECK(read(file).find("<svg") != std::string::npos);
+    ++links;
+  }
+  CHECK(links == 2);
+  CHECK(markdown.find("FAIL") != std::string::npos);
+  CHECK(markdown.find("block\\_on\\_slope") != std::string::npos);
+}
+
+TEST_CASE("a malformed result.json is reported, not fatal", "[report]") {
+  TempDir tmp;
+  const auto studies = tmp.path / "studies";
+  write(studies / "a_good" / "result.json", failing_study);
+  write(studies / "b_broken" / "result.json", "{ \"study\": \"b_broken\", \"checks\": [ }");
+  write(studies / "c_not_object" / "result.json", "[1, 2]");
+
+  report::Options options;
+  options.studies_dir = studies;
+  options.out_dir = tmp.path / "out";
+  const auto written = report::write_report(options);
+  CHECK(written.studies == 3);
+  const auto html = read(written.html);
+  CHECK(count(html, "UNREADABLE") >= 2);
+  CHECK(html.find("b_broken") != std::string::npos);
+  CHECK(html.find("parse error") != std::string::npos);  // the JSON error is shown
+  CHECK(html.find("block_on_slope") != std::string::npos);
+  CHECK(html.find("2 unreadable") != std::string::npos);
+  CHECK(read(written.markdown).find("UNREADABLE") != std::string::npos);
+}
+
+TEST_CASE("a failing gnuplot is noted in place of the figure", "[report]") {
+  TempDir tmp;
+  const auto studies = tmp.path / "studies";
+  write(studies / "impact_restitution" / "result.json", passing_study);
+  report::Options options;
+  options.studies_dir = studies;
+  options.out_dir = tmp.path / "out";
+  const auto written = report::write_report(options, tmp.path / "no_such_gnuplot");
+  CHECK(written.figures == 0);
+  const auto html = read(written.html);
+  CHECK(count(html, "<svg") == 0);
+  CHECK(html.find("gnuplot failed") != std::string::npos);
+}
+
+TEST_CASE("missing studies folder throws", "[report]") {
+  TempDir tmp;
+  report::Options options;
+  options.studies_dir = tmp.path / "nothing_here";
+  options.out_dir = tmp.path / "out";
+  CHECK_THROWS_AS(report::write_report(options), std::runtime_error);
+}

@@ -1,0 +1,429 @@
+#include "engine/study.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "dem/case_file.hpp"
+#include "dem/run.hpp"
+#include "dem/units.hpp"
+#include "engine/convergence.hpp"
+#include "ref/registry.hpp"
+
+namespace fs = std::filesystem;
+
+namespace ver {
+
+namespace {
+
+enum class Kind { refinement, single, stability };
+enum class Expect { within, above, below };
+
+struct Variant {
+  std::string label;
+  std::vector<std::string> set;
+  std::map<std::string, double> args;
+};
+
+struct Check {
+  std::string probe, label, solver;
+  std::optional<double> value;          // fixed reference value
+  double offset = 0.0, scale = 1.0;     // reference = offset + scale × solver (e.g. a position from a displacement)
+  std::map<std::string, double> args;
+  double tolerance = 0.0;
+  bool relative = false;
+  std::string reason;
+  std::optional<double> expected_order;
+  double order_band = 0.0;
+  std::vector<std::size_t> fit_levels;
+  std::vector<std::string> only;
+  Expect expect = Expect::within;
+};
+
+struct Study {
+  fs::path file, root;
+  std::string name, title, requirement, reference_text, case_path, parameter, parameter_label;
+  Kind kind = Kind::single;
+  std::vector<std::string> set;
+  std::vector<Variant> variants;
+  std::vector<double> values;       // refinement levels, coarse → fine
+  double low = 0.0, high = 0.0, rel_tol = 1e-4;  // stability bisection
+  std::vector<Check> checks;
+  nlohmann::json setup = nlohmann::json::object();
+};
+
+[[noreturn]] void fail(const Study& s, const std::string& key, const std::string& what) {
+  throw std::runtime_error(fmt::format("{}: {}: {}", s.file.string(), key, what));
+}
+
+double number_or_quantity(const Study& s, const toml::node& n, const std::string& key) {
+  if (auto d = n.value<double>()) return *d;
+  if (auto str = n.value_exact<std::string>()) {
+    try {
+      return dem::parse_quantity(*str).value;
+    } catch (const std::exception& e) {
+      fail(s, key, e.what());
+    }
+  }
+  fail(s, key, "expected a number or a string with a unit");
+}
+
+std::vector<std::string> strings(const Study& s, const toml::table& t, const std::string& key) {
+  std::vector<std::string> out;
+  if (const toml::node* n = t.get(key)) {
+    const toml::array* a = n->as_array();
+    if (!a) fail(s, key, "expected an array of strings");
+    for (const auto& x : *a) {
+      auto v = x.value_exact<std::string>();
+      if (!v) fail(s, key, "expected an array of strings");
+      out.push_back(*v);
+    }
+  }
+  return out;
+}
+
+std::map<std::string, double> args_of(const Study& s, const toml::table& t, const std::string& key) {
+  std::map<std::string, double> out;
+  if (const toml::node* n = t.get(key)) {
+    const toml::table* a = n->as_table();
+    if (!a) fail(s, key, "expected a table of reference arguments, e.g. { zeta = 0.3 }");
+    for (const auto& [k, v] : *a) out[std::string(k.str())] = number_or_quantity(s, v, key + "." + std::string(k.str()));
+  }
+  return out;
+}
+
+Study read_study(const fs::path& file) {
+  Study s;
+  s.file = file;
+  s.root = fs::absolute(file).parent_path().parent_path().parent_path();  // verification/<name>/study.toml
+  toml::table root;
+  try {
+    root = toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    throw std::runtime_error(fmt::format("{}:{}: syntax: {}", file.string(), e.source().begin.line, e.description()));
+  }
+  const toml::table* st = root["study"].as_table();
+  if (!st) fail(s, "study", "missing [study] table");
+  s.name = (*st)["name"].value_or(fs::absolute(file).parent_path().filename().string());
+  s.title = (*st)["title"].value_or(s.name);
+  s.requirement = (*st)["requirement"].value_or(std::string());
+  s.reference_text = (*st)["reference"].value_or(std::string());
+  s.case_path = (*st)["case"].value_or(std::string());
+  if (s.case_path.empty()) fail(s, "study.case", "missing: the base case file");
+  const std::string kind = (*st)["kind"].value_or(std::string("single"));
+  if (kind == "refinement") s.kind = Kind::refinement;
+  else if (kind == "single") s.kind = Kind::single;
+  else if (kind == "stability") s.kind = Kind::stability;
+  else fail(s, "study.kind", fmt::format("expected refinement, single or stability, got \"{}\"", kind));
+  s.set = strings(s, *st, "set");
+  if (const toml::table* su = (*st)["setup"].as_table()) {
+    for (const auto& [k, v] : *su) {
+      if (auto x = v.value<double>()) s.setup[std::string(k.str())] = *x;
+      else if (auto y = v.value_exact<std::string>()) s.setup[std::string(k.str())] = *y;
+    }
+  }
+  if (const toml::array* va = root["variant"].as_array()) {
+    for (const auto& n : *va) {
+      const toml::table* t = n.as_table();
+      if (!t) fail(s, "variant", "expected [[variant]] tables");
+      Variant v;
+      v.label = (*t)["label"].value_or(std::string());
+      v.set = strings(s, *t, "set");
+      v.args = args_of(s, *t, "args");
+      s.variants.push_back(v);
+    }
+  }
+  if (s.variants.empty()) s.variants.push_back({});
+  if (s.kind == Kind::refinement) {
+    const toml::table* r = root["refinement"].as_table();
+    if (!r) fail(s, "refinement", "missing [refinement] table for kind = \"refinement\"");
+    s.parameter = (*r)["parameter"].value_or(std::string());
+    s.parameter_label = (*r)["label"].value_or(s.parameter);
+    if (s.parameter.empty()) fail(s, "refinement.parameter", "missing: the case key to refine, e.g. numerics.dt");
+    if (const toml::array* a = (*r)["values"].as_array()) {
+      for (const auto& x : *a) s.values.push_back(number_or_quantity(s, x, "refinement.values"));
+    } else {
+      const toml::node* b = r->get("base");
+      if (!b) fail(s, "refinement", "give values = [...] or base, ratio, levels");
+      const double base = number_or_quantity(s, *b, "refinement.base");
+      const double ratio = (*r)["ratio"].value_or(2.0);
+      const auto levels = (*r)["levels"].value_or(int64_t{4});
+      if (ratio <= 1.0 || levels < 2) fail(s, "refinement", "need ratio > 1 and levels >= 2");
+      for (int64_t k = 0; k < levels; ++k) s.values.push_back(base / std::pow(ratio, static_cast<double>(k)));
+    }
+    if (s.values.size() < 2) fail(s, "refinement.values", "need at least two levels");
+  } else if (s.kind == Kind::stability) {
+    const toml::table* r = root["stability"].as_table();
+    if (!r) fail(s, "stability", "missing [stability] table for kind = \"stability\"");
+    s.parameter = (*r)["parameter"].value_or(std::string("numerics.dt"));
+    s.parameter_label = (*r)["label"].value_or(s.parameter);
+    if (!r->get("low") || !r->get("high")) fail(s, "stability", "need low (stable) and high (unstable) bounds");
+    s.low = number_or_quantity(s, *r->get("low"), "stability.low");
+    s.high = number_or_quantity(s, *r->get("high"), "stability.high");
+    s.rel_tol = (*r)["rel_tol"].value_or(1e-4);
+    if (!(s.low > 0.0 && s.high > s.low)) fail(s, "stability", "need 0 < low < high");
+  }
+  const toml::array* ca = root["check"].as_array();
+  if (!ca || ca->empty()) fail(s, "check", "missing: at least one [[check]]");
+  for (const auto& n : *ca) {
+    const toml::table* t = n.as_table();
+    Check c;
+    c.probe = (*t)["probe"].value_or(std::string(s.kind == Kind::stability ? "limit" : ""));
+    if (c.probe.empty()) fail(s, "check.probe", "missing: the probe of the case to check");
+    c.label = (*t)["label"].value_or(c.probe);
+    c.solver = (*t)["reference"].value_or(std::string());
+    if (const toml::node* v = t->get("value")) c.value = number_or_quantity(s, *v, "check.value");
+    if (c.solver.empty() && !c.value && s.kind != Kind::refinement)
+      fail(s, "check.reference", fmt::format("check \"{}\": give a reference solver or a value", c.label));
+    c.args = args_of(s, *t, "args");
+    if (const toml::node* o = t->get("reference_offset")) c.offset = number_or_quantity(s, *o, "check.reference_offset");
+    if (const toml::node* o = t->get("reference_scale")) c.scale = number_or_quantity(s, *o, "check.reference_scale");
+    if (!t->get("tolerance")) fail(s, "check.tolerance", fmt::format("check \"{}\": missing tolerance", c.label));
+    c.tolerance = number_or_quantity(s, *t->get("tolerance"), "check.tolerance");
+    c.relative = (*t)["error"].value_or(std::string("abs")) == "rel";
+    c.reason = (*t)["reason"].value_or(std::string());
+    if (c.reason.empty()) fail(s, "check.reason", fmt::format("check \"{}\": every tolerance needs a one-line reason", c.label));
+    if (auto p = (*t)["expected_order"].value<double>()) {
+      c.expected_order = *p;
+      c.order_band = (*t)["order_band"].value_or(0.2);
+    }
+    if (const toml::array* fl = (*t)["fit_levels"].as_array())
+      for (const auto& x : *fl) c.fit_levels.push_back(static_cast<std::size_t>(x.value_or(int64_t{0})));
+    c.only = strings(s, *t, "variants");
+    const std::string ex = (*t)["expect"].value_or(std::string("within"));
+    c.expect = ex == "above" ? Expect::above : ex == "below" ? Expect::below : Expect::within;
+    s.checks.push_back(c);
+  }
+  return s;
+}
+
+/// One run of the base case with overrides; returns its probes (empty on a blow-up) and status.
+struct RunOut {
+  std::map<std::string, std::optional<double>> probes;
+  std::string status, message;
+  double eps = 0.0;
+};
+
+RunOut run_one(const Study& s, const std::vector<std::string>& sets) {
+  const dem::Case c = dem::read_case(s.root / s.case_path, sets);
+  dem::RunOptions o;  // no files: the study records what it needs
+  const dem::RunResult r = dem::run_case(c, o);
+  return {r.probes, r.status, r.message, r.element_steps_per_second};
+}
+
+std::string fmt_value(std::optional<double> v) { return v ? fmt::format("{:.6g}", *v) : std::string("—"); }
+
+/// Runs jobs tasks in parallel, in a fixed assignment of results to slots (deterministic output).
+template <class F>
+void parallel_for(std::size_t n, int jobs, F&& f) {
+  std::atomic<std::size_t> next{0};
+  std::vector<std::thread> pool;
+  std::mutex err_m;
+  std::exception_ptr err;
+  for (int t = 0; t < std::max(1, jobs); ++t)
+    pool.emplace_back([&] {
+      for (std::size_t k; (k = next++) < n;) {
+        try {
+          f(k);
+        } catch (...) {
+          std::lock_guard<std::mutex> l(err_m);
+          if (!err) err = std::current_exception();
+        }
+      }
+    });
+  for (auto& th : pool) th.join();
+  if (err) std::rethrow_exception(err);
+}
+
+}  // namespace
+
+StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
+  const Study s = read_study(file);
+  const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
+  fs::create_directories(out);
+
+  nlohmann::json checks = nlohmann::json::array(), series_json = nlohmann::json::array();
+  bool passed = true;
+  auto reference_of = [&](const Check& c, const Variant& v, double param) -> std::optional<double> {
+    if (c.value) return c.value;
+    if (c.solver.empty()) return std::nullopt;
+    std::map<std::string, double> args = v.args;
+    for (const auto& [k, x] : c.args) args[k] = x;
+    // Only the arguments the solver takes: variant args may serve several solvers.
+    std::map<std::string, double> use;
+    for (const auto& info : ref::solvers())
+      if (info.name == c.solver)
+        for (const auto& a : info.arguments) {
+          if (a.name == "param") use[a.name] = param;
+          else if (args.count(a.name)) use[a.name] = args[a.name];
+        }
+    return c.offset + c.scale * ref::evaluate(c.solver, use);
+  };
+  auto applies = [](const Check& c, const Variant& v) {
+    if (c.only.empty()) return true;
+    for (const auto& o : c.only)
+      if (o == v.label) return true;
+    return false;
+  };
+  auto add_check = [&](const std::string& quantity, std::optional<double> reference, std::optional<double> dem,
+                       const Check& c, std::optional<double> order, const std::string& note) {
+    std::optional<double> err;
+    bool ok = dem.has_value();
+    if (dem && reference) {
+      const double e = std::abs(*dem - *reference);
+      err = c.relative ? e / std::abs(*reference) : e;
+      if (c.expect == Expect::within) ok = *err <= c.tolerance;
+      else if (c.expect == Expect::above) ok = *dem > *reference + c.tolerance;
+      else ok = *dem < *reference - c.tolerance;
+    }
+    bool order_ok = true;
+    if (c.expected_order) order_ok = order && std::abs(*order - *c.expected_order) <= c.order_band;
+    ok = ok && order_ok;
+    passed = passed && ok;
+    auto j = [](std::optional<double> x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); };
+    checks.push_back({{"quantity", quantity}, {"reference", j(reference)}, {"dem", j(dem)}, {"error", j(err)},
+                      {"error_kind", c.relative ? "rel" : "abs"}, {"tolerance", c.tolerance},
+                      {"tolerance_reason", c.reason}, {"observed_order", j(order)},
+                      {"expected_order", j(c.expected_order)},
+                      {"order_band", c.expected_order ? nlohmann::json(c.order_band) : nlohmann::json(nullptr)},
+                      {"expect", c.expect == Expect::within ? "within" : c.expect == Expect::above ? "above" : "below"},
+                      {"passed", ok}, {"note", note}});
+  };
+  auto label = [](const Check& c, const Variant& v) { return v.label.empty() ? c.label : fmt::format("{}, {}", c.label, v.label); };
+
+  double speed_sum = 0.0;
+  std::size_t speed_n = 0;
+  if (s.kind == Kind::single || s.kind == Kind::refinement) {
+    const std::size_t nl = s.kind == Kind::single ? 1 : s.values.size();
+    std::vector<RunOut> runs(s.variants.size() * nl);
+    parallel_for(runs.size(), opt.jobs, [&](std::size_t k) {
+      const Variant& v = s.variants[k / nl];
+      std::vector<std::string> sets = s.set;
+      sets.insert(sets.end(), v.set.begin(), v.set.end());
+      if (s.kind == Kind::refinement) sets.push_back(fmt::format("{}={:.17g}", s.parameter, s.values[k % nl]));
+      runs[k] = run_one(s, sets);
+    });
+    for (const auto& r : runs) {
+      speed_sum += r.eps;
+      ++speed_n;
+    }
+    std::ofstream csv(out / "levels.csv");
+    csv << "variant,level,parameter,status";
+    for (const auto& c : s.checks) csv << "," << c.probe;
+    csv << "\n";
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      csv << '"' << s.variants[k / nl].label << "\"," << k % nl << ","
+          << (s.kind == Kind::refinement ? fmt::format("{:.17g}", s.values[k % nl]) : "") << "," << runs[k].status;
+      for (const auto& c : s.checks) csv << "," << fmt_value(runs[k].probes.count(c.probe) ? runs[k].probes[c.probe] : std::nullopt);
+      csv << "\n";
+    }
+    for (const Check& c : s.checks) {
+      for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
+        const Variant& v = s.variants[vi];
+        if (!applies(c, v)) continue;
+        const RunOut& finest = runs[vi * nl + nl - 1];
+        if (!finest.probes.count(c.probe))
+          fail(s, "check.probe", fmt::format("the case has no probe \"{}\"", c.probe));
+        const std::optional<double> ref = reference_of(c, v, s.kind == Kind::refinement ? s.values.back() : 0.0);
+        std::string note = finest.status == "blow-up" ? "blow-up: " + finest.message : "";
+        if (s.kind == Kind::single) {
+          add_check(label(c, v), ref, finest.probes.at(c.probe), c, std::nullopt, note);
+          continue;
+        }
+        std::vector<double> h, q;
+        for (std::size_t l = 0; l < nl; ++l) {
+          const auto& p = runs[vi * nl + l].probes.at(c.probe);
+          if (!p) continue;
+          h.push_back(s.values[l]);
+          q.push_back(*p);
+        }
+        std::optional<double> order;
+        if (h.size() >= 2) {
+          ConvergenceOptions co;
+          co.reference = ref;
+          co.expected_order = c.expected_order;
+          co.fit_levels = c.fit_levels;
+          Series ser = analyse_convergence(h, q, co, label(c, v), s.parameter_label);
+          order = ser.fitted_order;
+          series_json.push_back(to_json(ser));
+          if (h.size() < nl) note += fmt::format(" {} of {} levels gave no value", nl - h.size(), nl);
+        } else {
+          note += " fewer than two levels gave a value";
+        }
+        add_check(label(c, v), ref, finest.probes.at(c.probe), c, order, note);
+      }
+    }
+  } else {  // stability: bisection on the parameter, per variant
+    std::vector<std::optional<double>> limits(s.variants.size());
+    std::vector<std::string> notes(s.variants.size());
+    parallel_for(s.variants.size(), opt.jobs, [&](std::size_t vi) {
+      const Variant& v = s.variants[vi];
+      auto stable = [&](double x) {
+        std::vector<std::string> sets = s.set;
+        sets.insert(sets.end(), v.set.begin(), v.set.end());
+        sets.push_back(fmt::format("{}={:.17g}", s.parameter, x));
+        sets.push_back("numerics.allow_unstable=true");
+        return run_one(s, sets).status != "blow-up";
+      };
+      double lo = s.low, hi = s.high;
+      if (!stable(lo)) {
+        limits[vi] = 0.0;
+        notes[vi] = fmt::format("unstable already at the lower bound {:.6g}", lo);
+        return;
+      }
+      if (stable(hi)) {
+        notes[vi] = fmt::format("stable up to the upper bound {:.6g}", hi);
+        return;
+      }
+      while ((hi - lo) > s.rel_tol * lo) {
+        const double mid = 0.5 * (lo + hi);
+        (stable(mid) ? lo : hi) = mid;
+      }
+      limits[vi] = 0.5 * (lo + hi);
+    });
+    for (const Check& c : s.checks)
+      for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
+        if (!applies(c, s.variants[vi])) continue;
+        add_check(label(c, s.variants[vi]), reference_of(c, s.variants[vi], 0.0), limits[vi], c, std::nullopt, notes[vi]);
+      }
+  }
+
+  nlohmann::json setup = s.setup;
+  setup["variants"] = s.variants.size();
+  if (s.kind == Kind::refinement) setup["levels"] = s.values;
+  if (speed_n) setup["mean element-steps per second"] = speed_sum / static_cast<double>(speed_n);
+  nlohmann::json prov = dem::provenance();
+  prov["overrides"] = s.set;
+  nlohmann::json result = {
+      {"study", s.name}, {"title", s.title}, {"requirement", s.requirement},
+      {"kind", s.kind == Kind::refinement ? "refinement" : s.kind == Kind::single ? "single" : "stability"},
+      {"case", s.case_path}, {"parameter", s.parameter}, {"reference", s.reference_text}, {"setup", setup},
+      {"provenance", prov}, {"passed", passed}, {"checks", checks}, {"series", series_json},
+      {"figures", nlohmann::json::array()}, {"tables", nlohmann::json::array()}};
+  std::ofstream(out / "result.json") << result.dump(2) << "\n";
+
+  if (opt.print) {
+    fmt::print("study {}: {}\n", s.name, s.title);
+    fmt::print("  {:<40} {:>13} {:>13} {:>10} {:>9} {:>15} {}\n", "quantity", "reference", "DEM", "error", "tol", "order (exp)", "");
+    for (const auto& c : checks) {
+      auto num = [](const nlohmann::json& x) { return x.is_null() ? std::string("—") : fmt::format("{:.6g}", x.get<double>()); };
+      const std::string order = c["observed_order"].is_null() && c["expected_order"].is_null()
+                                    ? ""
+                                    : fmt::format("{} ({}±{})", num(c["observed_order"]), num(c["expected_order"]), num(c["order_band"]));
+      fmt::print("  {:<40} {:>13} {:>13} {:>10} {:>9} {:>15} {}{}\n", c["quantity"].get<std::string>(), num(c["reference"]),
+                 num(c["dem"]), num(c["error"]), num(c["tolerance"]), order, c["passed"].get<bool>() ? "pass" : "FAIL",
+                 c["note"].get<std::string>().empty() ? "" : "  [" + c["note"].get<std::string>() + "]");
+    }
+    fmt::print("  => {}  ({})\n", passed ? "PASSED" : "FAILED", (out / "result.json").string());
+  }
+  return {passed, result};
+}
+
+}  // namespace ver

@@ -1,0 +1,28 @@
+#pragma once
+// The study runner: a study file (verification/<name>/study.toml, documented in verification/README.md)
+// names a base case, the overrides of its variants, the parameter to refine or bisect and the checks:
+// a probe of the case against a reference solver from reference/ (or a fixed value, or Richardson),
+// with a tolerance and an expected order. It runs every case in parallel, analyses each
+// convergence series (convergence.hpp), prints a table and writes result.json (RESULT_FORMAT.md).
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace ver {
+
+struct StudyOptions {
+  std::filesystem::path out_dir;   // default: build/studies/<name>
+  int jobs = 1;                    // runs in parallel
+  bool print = true;               // print the table
+};
+
+struct StudyResult {
+  bool passed = false;
+  nlohmann::json json;             // what result.json holds
+};
+
+/// Runs one study. Throws std::runtime_error for a malformed study file (file: key: what).
+StudyResult run_study(const std::filesystem::path& study_file, const StudyOptions& opt);
+
+}  // namespace ver
