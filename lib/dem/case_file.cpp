@@ -283,6 +283,7 @@ ProbeKind probe_kind(const std::string& s) {
   if (s == "value") return ProbeKind::value;
   if (s == "max") return ProbeKind::max;
   if (s == "min") return ProbeKind::min;
+  if (s == "slope") return ProbeKind::slope;
   if (s == "restitution") return ProbeKind::restitution;
   return ProbeKind::contact_duration;
 }
@@ -496,10 +497,15 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
   rd.each(top, "probe", [&](TableReader& r, std::size_t) {
     ProbeSpec p;
     p.name = r.string("name");
-    p.kind = probe_kind(r.choice("kind", {"value", "max", "min", "restitution", "contact_duration"}, "value"));
-    if (p.kind == ProbeKind::value || p.kind == ProbeKind::max || p.kind == ProbeKind::min) {
+    p.kind = probe_kind(r.choice("kind", {"value", "max", "min", "slope", "restitution", "contact_duration"}, "value"));
+    if (p.kind == ProbeKind::value || p.kind == ProbeKind::max || p.kind == ProbeKind::min || p.kind == ProbeKind::slope) {
       p.quantity = r.string("quantity");
       if (p.kind == ProbeKind::value) p.at = r.optional_quantity("at", dims::time);
+      if (p.kind == ProbeKind::slope) {
+        p.from = r.quantity("from", dims::time);
+        p.to = r.quantity("to", dims::time);
+        if (!(p.to > p.from)) r.fail("to", "must be later than from");
+      }
     } else {
       p.element = static_cast<std::uint32_t>(r.integer("element", 0, static_cast<std::int64_t>(m.elements.size()) - 1));
       if (r.has("wall") == r.has("other")) r.fail_here("give exactly one of other (an element index) or wall (a wall name)");

@@ -20,7 +20,7 @@ class CaseError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class ProbeKind { value, max, min, restitution, contact_duration };
+enum class ProbeKind { value, max, min, slope, restitution, contact_duration };
 
 /// A quantity of interest computed during a run (written to summary.json under "probes").
 struct ProbeSpec {
@@ -28,6 +28,7 @@ struct ProbeSpec {
   ProbeKind kind = ProbeKind::value;
   std::string quantity;          // value/max/min: a series quantity name
   std::optional<double> at;      // value: time [s] (linear interpolation); none: end of run
+  double from = 0.0, to = 0.0;   // slope: least-squares slope dq/dt over from ≤ t ≤ to [s]
   std::uint32_t element = 0;     // restitution / contact_duration: element i
   std::uint32_t other = 0;       //   and element j or wall j
   bool other_is_wall = false;

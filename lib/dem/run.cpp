@@ -43,6 +43,7 @@ struct ProbeState {
   std::optional<double> value;
   double extreme = 0.0;
   bool have_extreme = false;
+  double st = 0.0, sq = 0.0, stt = 0.0, stq = 0.0, sn = 0.0;  // slope: least-squares sums
   // restitution / duration
   Vec2 n0;
   double vn0 = 0.0;
@@ -175,6 +176,16 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
           p.prev_t = sim.time();
           p.prev_v = v;
         }
+      } else if (s.kind == ProbeKind::slope) {
+        const double t = sim.time();
+        if (t >= s.from - 1e-12 && t <= s.to + 1e-12) {
+          const double v = p.q(sim), tt = t - s.from;  // centred on `from` for conditioning
+          p.st += tt;
+          p.sq += v;
+          p.stt += tt * tt;
+          p.stq += tt * v;
+          p.sn += 1.0;
+        }
       } else if (s.kind == ProbeKind::max || s.kind == ProbeKind::min) {
         const double v = p.q(sim);
         if (!p.have_extreme || (s.kind == ProbeKind::max ? v > p.extreme : v < p.extreme)) p.extreme = v;
@@ -247,6 +258,9 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       case ProbeKind::max:
       case ProbeKind::min:
         if (p.have_extreme) v = p.extreme;
+        break;
+      case ProbeKind::slope:
+        if (p.sn >= 2.0) v = (p.sn * p.stq - p.st * p.sq) / (p.sn * p.stt - p.st * p.st);
         break;
       case ProbeKind::restitution: {
         if (p.in_contact || p.force_steps == 0 || p.vn0 == 0.0) break;  // not ended, or never touched

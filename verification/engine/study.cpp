@@ -1,5 +1,6 @@
 #include "engine/study.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <fstream>
@@ -47,6 +48,18 @@ struct Check {
   Expect expect = Expect::within;
 };
 
+/// A figure from the time series of runs (the finest level of each listed variant), with an
+/// optional reference curve evaluated at the same x values.
+struct Figure {
+  std::string id, title, xlabel, ylabel, x, y, solver, x_arg;
+  double x_scale = 1.0, y_scale = 1.0, ref_scale = 1.0;
+  bool y_from_start = false;  // plot y − y(0)
+  std::int64_t every = 1;     // output.every of the runs that feed it
+  std::vector<std::string> variants;
+  std::map<std::string, double> args;
+  bool logx = false, logy = false;
+};
+
 struct Study {
   fs::path file, root;
   std::string name, title, requirement, reference_text, case_path, parameter, parameter_label;
@@ -56,6 +69,7 @@ struct Study {
   std::vector<double> values;       // refinement levels, coarse → fine
   double low = 0.0, high = 0.0, rel_tol = 1e-4;  // stability bisection
   std::vector<Check> checks;
+  std::vector<Figure> figures;
   nlohmann::json setup = nlohmann::json::object();
 };
 
@@ -201,6 +215,32 @@ Study read_study(const fs::path& file) {
     c.expect = ex == "above" ? Expect::above : ex == "below" ? Expect::below : Expect::within;
     s.checks.push_back(c);
   }
+  if (const toml::array* fa = root["figure"].as_array()) {
+    for (const auto& n : *fa) {
+      const toml::table* t = n.as_table();
+      if (!t) fail(s, "figure", "expected [[figure]] tables");
+      Figure f;
+      f.id = (*t)["id"].value_or(fmt::format("figure{}", s.figures.size()));
+      f.title = (*t)["title"].value_or(f.id);
+      f.x = (*t)["x"].value_or(std::string("t"));
+      f.y = (*t)["y"].value_or(std::string());
+      if (f.y.empty()) fail(s, "figure.y", "missing: the series quantity to plot");
+      f.xlabel = (*t)["xlabel"].value_or(f.x);
+      f.ylabel = (*t)["ylabel"].value_or(f.y);
+      f.x_scale = (*t)["x_scale"].value_or(1.0);
+      f.y_scale = (*t)["y_scale"].value_or(1.0);
+      f.ref_scale = (*t)["reference_scale"].value_or(1.0);
+      f.y_from_start = (*t)["y_from_start"].value_or(false);
+      f.every = (*t)["every"].value_or(int64_t{100});
+      f.solver = (*t)["reference"].value_or(std::string());
+      f.x_arg = (*t)["x_arg"].value_or(std::string("t"));
+      f.args = args_of(s, *t, "args");
+      f.variants = strings(s, *t, "variants");
+      f.logx = (*t)["logx"].value_or(false);
+      f.logy = (*t)["logy"].value_or(false);
+      s.figures.push_back(f);
+    }
+  }
   return s;
 }
 
@@ -211,9 +251,10 @@ struct RunOut {
   double eps = 0.0;
 };
 
-RunOut run_one(const Study& s, const std::vector<std::string>& sets) {
+RunOut run_one(const Study& s, const std::vector<std::string>& sets, const fs::path& out = {}) {
   const dem::Case c = dem::read_case(s.root / s.case_path, sets);
-  dem::RunOptions o;  // no files: the study records what it needs
+  dem::RunOptions o;  // files only for runs that feed a figure
+  o.out_dir = out;
   const dem::RunResult r = dem::run_case(c, o);
   return {r.probes, r.status, r.message, r.element_steps_per_second};
 }
@@ -308,7 +349,26 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       std::vector<std::string> sets = s.set;
       sets.insert(sets.end(), v.set.begin(), v.set.end());
       if (s.kind == Kind::refinement) sets.push_back(fmt::format("{}={:.17g}", s.parameter, s.values[k % nl]));
-      runs[k] = run_one(s, sets);
+      fs::path run_dir;
+      if (k % nl == nl - 1) {  // the finest level feeds the figures
+        std::vector<std::string> q;
+        std::int64_t every = 0;
+        for (const Figure& f : s.figures)
+          if (f.variants.empty() || std::find(f.variants.begin(), f.variants.end(), v.label) != f.variants.end()) {
+            q.push_back(f.x);
+            q.push_back(f.y);
+            every = every ? std::min(every, f.every) : f.every;
+          }
+        if (!q.empty()) {
+          run_dir = out / "runs" / fmt::format("variant{}", k / nl);
+          std::string list;
+          for (const auto& name : q) list += (list.empty() ? "" : ", ") + fmt::format("\"{}\"", name);
+          sets.push_back(fmt::format("output.series=[{}]", list));
+          sets.push_back(fmt::format("output.every={}", every));
+          sets.push_back("output.vtk=false");
+        }
+      }
+      runs[k] = run_one(s, sets, run_dir);
     });
     for (const auto& r : runs) {
       speed_sum += r.eps;
@@ -395,6 +455,64 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       }
   }
 
+  nlohmann::json figures = nlohmann::json::array();
+  for (const Figure& f : s.figures) {
+    nlohmann::json curves = nlohmann::json::array();
+    std::vector<double> ref_x;
+    for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
+      const Variant& v = s.variants[vi];
+      if (!f.variants.empty() && std::find(f.variants.begin(), f.variants.end(), v.label) == f.variants.end()) continue;
+      const fs::path csv = out / "runs" / fmt::format("variant{}", vi) / "series.csv";
+      std::ifstream in(csv);
+      std::string line;
+      std::vector<std::string> header;
+      std::vector<double> xs, ys;
+      while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        std::vector<std::string> cells;
+        std::size_t start = 0;
+        for (std::size_t k = 0; k <= line.size(); ++k)
+          if (k == line.size() || line[k] == ',') {
+            cells.push_back(line.substr(start, k - start));
+            start = k + 1;
+          }
+        if (header.empty()) {
+          header = cells;
+          continue;
+        }
+        auto col = [&](const std::string& name) {
+          for (std::size_t k = 0; k < header.size(); ++k)
+            if (header[k] == name) return std::stod(cells[k]);
+          return std::nan("");
+        };
+        xs.push_back(col(f.x));
+        ys.push_back(col(f.y));
+      }
+      if (xs.empty()) continue;
+      const double y0 = ys.front();
+      std::vector<double> px, py;
+      for (std::size_t k = 0; k < xs.size(); ++k) {
+        px.push_back(xs[k] * f.x_scale);
+        py.push_back(((f.y_from_start ? ys[k] - y0 : ys[k])) * f.y_scale);
+      }
+      if (ref_x.empty()) ref_x = xs;
+      curves.push_back({{"label", v.label.empty() ? std::string("DEM") : "DEM " + v.label}, {"x", px}, {"y", py},
+                        {"style", "lines"}});
+    }
+    if (!f.solver.empty() && !ref_x.empty()) {
+      std::vector<double> px, py;
+      for (double x : ref_x) {
+        std::map<std::string, double> args = f.args;
+        args[f.x_arg] = x;
+        px.push_back(x * f.x_scale);
+        py.push_back(ref::evaluate(f.solver, args) * f.ref_scale * f.y_scale);
+      }
+      curves.push_back({{"label", "reference: " + f.solver}, {"x", px}, {"y", py}, {"style", "points"}});
+    }
+    figures.push_back({{"id", f.id}, {"title", f.title}, {"xlabel", f.xlabel}, {"ylabel", f.ylabel},
+                       {"logx", f.logx}, {"logy", f.logy}, {"curves", curves}});
+  }
+
   nlohmann::json setup = s.setup;
   setup["variants"] = s.variants.size();
   if (s.kind == Kind::refinement) setup["levels"] = s.values;
@@ -406,7 +524,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       {"kind", s.kind == Kind::refinement ? "refinement" : s.kind == Kind::single ? "single" : "stability"},
       {"case", s.case_path}, {"parameter", s.parameter}, {"reference", s.reference_text}, {"setup", setup},
       {"provenance", prov}, {"passed", passed}, {"checks", checks}, {"series", series_json},
-      {"figures", nlohmann::json::array()}, {"tables", nlohmann::json::array()}};
+      {"figures", figures}, {"tables", nlohmann::json::array()}};
   std::ofstream(out / "result.json") << result.dump(2) << "\n";
 
   if (opt.print) {
