@@ -392,7 +392,16 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     const auto ec = rd.common(r);
     const Vec2 pos = r.vector("position", dims::length);
     const double rot = r.quantity("rotation", dims::angle, 0.0);
-    rd.place(ec, pos, rot, -1);
+    const std::size_t idx = rd.place(ec, pos, rot, -1);
+    if (const toml::table* pt = r.table("preload")) {
+      TableReader pr(*pt, r.key_path("preload"), file);
+      Preload p;
+      p.element = static_cast<std::uint32_t>(idx);
+      p.rotation = pr.quantity("rotation", dims::angle);
+      p.about = pr.vector("about", dims::length);
+      pr.finish();
+      m.preloads.push_back(p);
+    }
   });
   // [[lattice]]: columns × rows elements, axes rotated by `rotation`, spacing 2r by default
   rd.each(top, "lattice", [&](TableReader& r, std::size_t) {

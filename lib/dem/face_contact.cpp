@@ -23,7 +23,9 @@ void start_face(const FaceLaw& law, const FaceConstants& c, double u0, bool bond
     SegmentState& s = h.seg[i];
     s.u = u0;
     s.intact = (bonded || law.healing) ? 1 : 0;
-    if (u0 >= 0.0) {  // link: unlinked → linked when u(ξ) ≥ 0
+    // link: unlinked → linked when u(ξ) ≥ 0; a bonded face is linked from the start even when
+    // round-off leaves its touching overlap a hair below zero
+    if (u0 >= 0.0 || bonded) {
       s.linked = 1;
       s.pe = c.kn * u0;
     }

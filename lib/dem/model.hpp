@@ -60,7 +60,17 @@ struct Numerics {
   double energy_limit = 0.0;    // stop when the total energy exceeds this [J] (0: automatic)
 };
 
+/// A static preload: before the first step the element is moved rigidly (rotated by `rotation` about
+/// `about`) and its contacts take that motion as a static increment (springs loaded, no dashpot
+/// forces), e.g. "statically rotated by 0.1° about the face centre, then released" (model.md §3 M-B).
+struct Preload {
+  std::uint32_t element = 0;
+  double rotation = 0.0;  // [rad]
+  Vec2 about;             // [m]
+};
+
 struct Model {
+  std::vector<Preload> preloads;
   std::vector<Material> materials;
   std::vector<PairLaw> laws;
   std::vector<std::int32_t> law_of_pair;  // materials.size()² entries, index into laws or −1

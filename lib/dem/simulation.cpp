@@ -77,6 +77,44 @@ Simulation::Simulation(Model model) : m_(std::move(model)) {
     wl.increment = wl.drive >= 0 ? m_.drives[static_cast<std::size_t>(wl.drive)].at(0.0) * m_.numerics.dt
                                  : Vec2{};
   rebuild();
+  if (!m_.preloads.empty()) apply_preloads();
+}
+
+void Simulation::apply_preloads() {
+  Elements& e = m_.elements;
+  // The preload is the increment of a static zeroth step: contacts are formed and loaded by it with
+  // 1/Δt = 0 (no dashpot forces); nothing is integrated. The increments of step 0 are then restored.
+  std::vector<double> keep_dx = e.dx, keep_dy = e.dy, keep_dphi = e.dphi;
+  std::fill(e.dx.begin(), e.dx.end(), 0.0);
+  std::fill(e.dy.begin(), e.dy.end(), 0.0);
+  std::fill(e.dphi.begin(), e.dphi.end(), 0.0);
+  for (const Preload& p : m_.preloads) {
+    const std::size_t i = p.element;
+    const Vec2 c{e.x[i], e.y[i]}, d = c - p.about;
+    const double cs = std::cos(p.rotation), sn = std::sin(p.rotation);
+    const Vec2 moved = p.about + Vec2{cs * d.x - sn * d.y, sn * d.x + cs * d.y};
+    e.dx[i] = moved.x - c.x;
+    e.dy[i] = moved.y - c.y;
+    e.dphi[i] = p.rotation;
+    e.x[i] = moved.x;
+    e.y[i] = moved.y;
+    e.phi[i] += p.rotation;
+  }
+  for (Wall& w : m_.walls) w.force = {};
+  std::vector<Vec2> wall_inc;
+  for (Wall& w : m_.walls) {
+    wall_inc.push_back(w.increment);
+    w.increment = {};
+  }
+  sweep_linear_pairs(0.0);
+  sweep_face_pairs(0.0);
+  sweep_linear_walls(0.0);
+  sweep_face_walls(0.0);
+  for (std::size_t k = 0; k < m_.walls.size(); ++k) m_.walls[k].increment = wall_inc[k];
+  e.dx = keep_dx;
+  e.dy = keep_dy;
+  e.dphi = keep_dphi;
+  rebuild();
 }
 
 bool Simulation::needs_rebuild() const {

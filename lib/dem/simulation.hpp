@@ -54,6 +54,7 @@ class Simulation {
 
  private:
   void rebuild();
+  void apply_preloads();
   bool needs_rebuild() const;
   void sweep_linear_pairs(double inv_dt);
   void sweep_face_pairs(double inv_dt);

@@ -1,0 +1,80 @@
+#pragma once
+// Small helpers shared by the unit tests of the DEM core: models built in code, temporary case
+// files, messages of expected exceptions.
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "dem/model.hpp"
+
+namespace test {
+
+/// A model with the given materials (name, density) and no laws yet; thickness 1 m.
+inline dem::Model make_model(const std::vector<std::pair<std::string, double>>& materials, double dt) {
+  dem::Model m;
+  for (const auto& [name, rho] : materials) m.materials.push_back({name, rho});
+  m.law_of_pair.assign(m.materials.size() * m.materials.size(), -1);
+  m.numerics.dt = dt;
+  return m;
+}
+
+/// Registers `law` for the material pair (a, b), both orders.
+inline void set_law(dem::Model& m, std::int32_t a, std::int32_t b, const dem::PairLaw& law) {
+  const auto idx = static_cast<std::int32_t>(m.laws.size());
+  m.laws.push_back(law);
+  const std::size_t n = m.materials.size();
+  m.law_of_pair[static_cast<std::size_t>(a) * n + static_cast<std::size_t>(b)] = idx;
+  m.law_of_pair[static_cast<std::size_t>(b) * n + static_cast<std::size_t>(a)] = idx;
+}
+
+inline dem::Wall segment_wall(dem::Vec2 a, dem::Vec2 b, std::int32_t material, std::string name = "wall") {
+  dem::Wall w;
+  w.name = std::move(name);
+  w.a = a;
+  w.b = b;
+  w.material = material;
+  return w;
+}
+
+/// Linear spring–dashpot law with explicit dashpots.
+inline dem::PairLaw linear_law(double kn, double ks, double mu, double eta_n, double eta_s) {
+  dem::PairLaw law;
+  law.kind = dem::LawKind::linear;
+  law.linear.kn = kn;
+  law.linear.ks = ks;
+  law.linear.mu = mu;
+  law.damping_from_ratio = false;
+  law.eta_n = eta_n;
+  law.eta_s = eta_s;
+  return law;
+}
+
+/// Writes `text` to a fresh file in a per-test temporary folder and returns its path.
+inline std::filesystem::path write_temp(const std::string& name, const std::string& text) {
+  const auto dir = std::filesystem::temp_directory_path() / "dem2d_unit_lib";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+/// What `f` throws as Exception (the test fails if it throws nothing or something else).
+template <class Exception, class F>
+std::string message_of(F&& f) {
+  try {
+    f();
+  } catch (const Exception& e) {
+    return e.what();
+  }
+  FAIL("the expected exception was not thrown");
+  return {};
+}
+
+/// Source folder of the tests' case files.
+inline std::filesystem::path case_dir() { return std::filesystem::path(DEM2D_SOURCE_DIR) / "tests/lib/cases"; }
+
+}  // namespace test
