@@ -80,9 +80,28 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
       if (f == "fx") return [u](const Simulation& s) { return s.model().elements.fx[u]; };
       if (f == "fy") return [u](const Simulation& s) { return s.model().elements.fy[u]; };
       if (f == "moment") return [u](const Simulation& s) { return s.model().elements.moment[u]; };
-      throw bad("unknown element field (x, y, phi, vx, vy, omega, fx, fy, moment, gap.<other>, fn.<other>, fs.<other>)");
+      // px(a,b), py(a,b): a body point at the offset (a r, b r) in the element's own frame, e.g. the
+      // corner (1,-1) of a PRE's square
+      if ((f.rfind("px(", 0) == 0 || f.rfind("py(", 0) == 0) && f.back() == ')') {
+        const auto comma = f.find(',');
+        if (comma == std::string::npos) throw bad("expected px(a,b) or py(a,b)");
+        double a = 0.0, b = 0.0;
+        try {
+          a = std::stod(f.substr(3, comma - 3));
+          b = std::stod(f.substr(comma + 1, f.size() - comma - 2));
+        } catch (const std::exception&) {
+          throw bad("expected numbers in px(a,b) / py(a,b)");
+        }
+        const bool want_x = f[1] == 'x';
+        return [u, a, b, want_x](const Simulation& s) {
+          const Elements& e = s.model().elements;
+          const double c = std::cos(e.phi[u]), sn = std::sin(e.phi[u]), r = e.radius[u];
+          return want_x ? e.x[u] + r * (c * a - sn * b) : e.y[u] + r * (sn * a + c * b);
+        };
+      }
+      throw bad("unknown element field (x, y, phi, vx, vy, omega, fx, fy, moment, px(a,b), py(a,b), gap.<other>, fn.<other>, fs.<other>)");
     }
-    if (p.size() == 3 && (p[1] == "gap" || p[1] == "fn" || p[1] == "fs")) {
+    if (p.size() == 3 && (p[1] == "gap" || p[1] == "fn" || p[1] == "fs" || p[1] == "links")) {
       long j = -1;
       try {
         j = element_ref(p[2], m);
@@ -99,6 +118,10 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
           const Vec2 c{e.x[u], e.y[u]};
           if (wall) return norm(closest_point(s.model().walls[o], c) - c) - e.radius[u];
           return std::hypot(e.x[o] - e.x[u], e.y[o] - e.y[u]) - e.radius[u] - e.radius[o];
+        };
+      if (p[1] == "links")
+        return [u, o, wall](const Simulation& s) {
+          return static_cast<double>(s.contact(static_cast<std::uint32_t>(u), o, wall).links);
         };
       const bool normal = p[1] == "fn";
       return [u, o, wall, normal](const Simulation& s) {

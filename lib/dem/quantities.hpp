@@ -3,8 +3,10 @@
 //   t, step, contacts, energy.kinetic, energy.potential, energy.elastic, energy.total,
 //   mean_increment                     mean of |Δx| and |Δy| over active elements [m]
 //   e<i>.x|y|phi|vx|vy|omega|fx|fy|moment     element i (state after the step)
+//   e<i>.px(a,b)  e<i>.py(a,b)        a body point at offset (a r, b r) in the element's frame [m]
 //   e<i>.gap.<wall>  e<i>.gap.e<j>     surface gap (negative: overlap) [m]
 //   e<i>.fn.<wall>   e<i>.fs.<wall>    contact normal / shear force with a wall (or e<j>) [N]
+//   e<i>.links.<wall or e<j>>          linked segments of that contact (face law; 1 for linear)
 //   <wall>.fx  <wall>.fy               force of the elements on the wall [N]
 //   <wall>.x   <wall>.y                wall position (first end point) [m]
 #include <functional>

@@ -315,7 +315,12 @@ void Simulation::sweep_face_pairs(double inv_dt) {
     const double ddx = e.x[j] - e.x[i], ddy = e.y[j] - e.y[i];
     const double rs = e.radius[i] + e.radius[j];
     const double r2 = ddx * ddx + ddy * ddy;
-    if (!s.touching && r2 > rs * rs) continue;  // not touching → touching when D ≤ r1 + r2
+    const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
+    // Faces bonded at the start touch by construction (a generated lattice): accept them up to
+    // round-off of the generated positions.
+    const bool bond = step_ == 0 && (law.bond_at_start || (e.group[i] >= 0 && e.group[i] == e.group[j]));
+    const double touch = bond ? rs * (1.0 + 1e-9) : rs;
+    if (!s.touching && r2 > touch * touch) continue;  // not touching → touching when D ≤ r1 + r2
     const double dist = std::sqrt(r2);
     const double nx = ddx / dist, ny = ddy / dist;
     const double ux = e.dx[i] - e.dx[j], uy = e.dy[i] - e.dy[j];
@@ -329,11 +334,10 @@ void Simulation::sweep_face_pairs(double inv_dt) {
     k.dphi2 = e.dphi[j];
     k.r1 = e.radius[i];
     k.r2 = e.radius[j];
-    const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
     if (!s.touching) {
       s.touching = 1;
       s.c = face_constants(law, e.radius[i], e.radius[j], reduced_mass(e.mass[i], e.mass[j]), m_.thickness);
-      const bool bonded = step_ == 0 && (law.bond_at_start || (e.group[i] >= 0 && e.group[i] == e.group[j]));
+      const bool bonded = bond;
       const double u0 = (step_ == 0 || law.onset == Onset::overlap) ? (rs - dist) - k.du_projected : 0.0;
       start_face(law.face, s.c, u0, bonded, s.h);
     }
@@ -364,7 +368,9 @@ void Simulation::sweep_face_walls(double inv_dt) {
     const Vec2 c{e.x[i], e.y[i]};
     const Vec2 d = closest_point(w, c) - c;
     const double r2 = dot(d, d), r = e.radius[i];
-    if ((!s.touching && r2 > r * r) || r2 == 0.0) continue;
+    const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
+    const double touch = (step_ == 0 && law.bond_at_start) ? r * (1.0 + 1e-9) : r;
+    if ((!s.touching && r2 > touch * touch) || r2 == 0.0) continue;
     const double dist = std::sqrt(r2);
     const double nx = d.x / dist, ny = d.y / dist;
     const double ux = e.dx[i] - w.increment.x, uy = e.dy[i] - w.increment.y;
@@ -375,7 +381,6 @@ void Simulation::sweep_face_walls(double inv_dt) {
     k.dv_frame = k.dv_translation;
     k.dphi1 = e.dphi[i];
     k.r1 = r;
-    const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
     if (!s.touching) {
       s.touching = 1;
       s.c = face_constants(law, r, 0.0, e.mass[i], m_.thickness);

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <numbers>
+#include <sstream>
 #include <optional>
 #include <thread>
 
@@ -24,7 +26,7 @@ namespace ver {
 
 namespace {
 
-enum class Kind { refinement, single, stability };
+enum class Kind { refinement, single, stability, mode_map };
 enum class Expect { within, above, below };
 
 struct Variant {
@@ -71,6 +73,11 @@ struct Study {
   std::vector<Check> checks;
   std::vector<Figure> figures;
   nlohmann::json setup = nlohmann::json::object();
+  // mode_map: block shapes (columns, rows) × friction angles × slope angles
+  std::vector<std::pair<int, int>> blocks;
+  std::vector<double> phis, alphas;  // [rad]
+  double radius = 0.0, margin = 0.0, rotation_threshold = 0.0, slide_threshold = 0.0;
+  int wall_contact = 1;
 };
 
 [[noreturn]] void fail(const Study& s, const std::string& key, const std::string& what) {
@@ -135,7 +142,8 @@ Study read_study(const fs::path& file) {
   if (kind == "refinement") s.kind = Kind::refinement;
   else if (kind == "single") s.kind = Kind::single;
   else if (kind == "stability") s.kind = Kind::stability;
-  else fail(s, "study.kind", fmt::format("expected refinement, single or stability, got \"{}\"", kind));
+  else if (kind == "mode_map") s.kind = Kind::mode_map;
+  else fail(s, "study.kind", fmt::format("expected refinement, single, stability or mode_map, got \"{}\"", kind));
   s.set = strings(s, *st, "set");
   if (const toml::table* su = (*st)["setup"].as_table()) {
     for (const auto& [k, v] : *su) {
@@ -184,12 +192,35 @@ Study read_study(const fs::path& file) {
     s.rel_tol = (*r)["rel_tol"].value_or(1e-4);
     if (!(s.low > 0.0 && s.high > s.low)) fail(s, "stability", "need 0 < low < high");
   }
+  if (s.kind == Kind::mode_map) {
+    const toml::table* r = root["mode_map"].as_table();
+    if (!r) fail(s, "mode_map", "missing [mode_map] table for kind = \"mode_map\"");
+    if (const toml::array* b = (*r)["blocks"].as_array())
+      for (const auto& x : *b) {
+        const toml::array* pair = x.as_array();
+        if (!pair || pair->size() != 2) fail(s, "mode_map.blocks", "expected [[columns, rows], ...]");
+        s.blocks.emplace_back(static_cast<int>(pair->get(0)->value_or(int64_t{1})), static_cast<int>(pair->get(1)->value_or(int64_t{1})));
+      }
+    auto angles = [&](const char* key, std::vector<double>& out) {
+      if (const toml::array* a = (*r)[key].as_array())
+        for (const auto& x : *a) out.push_back(x.value_or(0.0) * std::numbers::pi / 180.0);
+      if (out.empty()) fail(s, fmt::format("mode_map.{}", key), "expected a list of angles in degrees");
+    };
+    angles("phis_deg", s.phis);
+    angles("alphas_deg", s.alphas);
+    s.radius = (*r)["radius"].value_or(0.0);
+    s.margin = (*r)["margin_deg"].value_or(1.0) * std::numbers::pi / 180.0;
+    s.rotation_threshold = (*r)["rotation_threshold"].value_or(2e-3);
+    s.slide_threshold = (*r)["slide_threshold"].value_or(1e-4);
+    s.wall_contact = static_cast<int>((*r)["wall_contact"].value_or(int64_t{1}));
+    if (s.blocks.empty() || !(s.radius > 0.0)) fail(s, "mode_map", "need blocks and radius");
+  }
   const toml::array* ca = root["check"].as_array();
   if (!ca || ca->empty()) fail(s, "check", "missing: at least one [[check]]");
   for (const auto& n : *ca) {
     const toml::table* t = n.as_table();
     Check c;
-    c.probe = (*t)["probe"].value_or(std::string(s.kind == Kind::stability ? "limit" : ""));
+    c.probe = (*t)["probe"].value_or(std::string(s.kind == Kind::stability ? "limit" : s.kind == Kind::mode_map ? "mismatches" : ""));
     if (c.probe.empty()) fail(s, "check.probe", "missing: the probe of the case to check");
     c.label = (*t)["label"].value_or(c.probe);
     c.solver = (*t)["reference"].value_or(std::string());
@@ -341,6 +372,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
 
   double speed_sum = 0.0;
   std::size_t speed_n = 0;
+  nlohmann::json s_tables = nlohmann::json::array(), s_setup_extra = nlohmann::json::object();
   if (s.kind == Kind::single || s.kind == Kind::refinement) {
     const std::size_t nl = s.kind == Kind::single ? 1 : s.values.size();
     std::vector<RunOut> runs(s.variants.size() * nl);
@@ -420,6 +452,100 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
         add_check(label(c, v), ref, finest.probes.at(c.probe), c, order, note);
       }
     }
+  } else if (s.kind == Kind::mode_map) {
+    // Sagaseta's dynamic classification (refs §2.3) against the DEM's motion, per grid point.
+    struct Point {
+      std::size_t block, phi, alpha;
+      int ref = 0, gb = 0, dem = -1;
+      bool near_boundary = false;
+      double slide = 0.0, rotation = 0.0;
+    };
+    std::vector<Point> pts;
+    for (std::size_t b = 0; b < s.blocks.size(); ++b)
+      for (std::size_t f = 0; f < s.phis.size(); ++f)
+        for (std::size_t a = 0; a < s.alphas.size(); ++a) pts.push_back({b, f, a});
+    auto mode_at = [&](const char* solver, double alpha, double phi, double bw, double bh) {
+      return static_cast<int>(std::lround(ref::evaluate(solver, {{"alpha", alpha}, {"phi", phi}, {"b", bw}, {"h", bh}})));
+    };
+    parallel_for(pts.size(), opt.jobs, [&](std::size_t k) {
+      Point& p = pts[k];
+      const auto [cols, rows] = s.blocks[p.block];
+      const double bw = 2.0 * s.radius * cols, bh = 2.0 * s.radius * rows;
+      const double phi = s.phis[p.phi], alpha = s.alphas[p.alpha];
+      p.ref = mode_at("incline.mode", alpha, phi, bw, bh);
+      p.gb = mode_at("incline.mode_gb", alpha, phi, bw, bh);
+      // Near a boundary in α or in φ (e.g. b/h = tan φ exactly is the slide / slide + topple boundary).
+      p.near_boundary = mode_at("incline.mode", alpha - s.margin, phi, bw, bh) != p.ref ||
+                        mode_at("incline.mode", alpha + s.margin, phi, bw, bh) != p.ref ||
+                        mode_at("incline.mode", alpha, phi - s.margin, bw, bh) != p.ref ||
+                        mode_at("incline.mode", alpha, phi + s.margin, bw, bh) != p.ref;
+      std::vector<std::string> sets = s.set;
+      sets.push_back(fmt::format("lattice.0.columns={}", cols));
+      sets.push_back(fmt::format("lattice.0.rows={}", rows));
+      sets.push_back(fmt::format("physics.gravity.direction={:.17g} deg", alpha * 180.0 / std::numbers::pi - 90.0));
+      sets.push_back(fmt::format("contact.{}.friction_angle={:.17g} deg", s.wall_contact, phi * 180.0 / std::numbers::pi));
+      sets.push_back(fmt::format("probe.0.quantity=e{}.px(1,-1)", cols - 1));
+      sets.push_back(fmt::format("probe.2.quantity=e{}.px(1,-1)", cols - 1));
+      const RunOut r = run_one(s, sets);
+      auto get = [&](const char* name) { return r.probes.count(name) ? r.probes.at(name) : std::nullopt; };
+      if (r.status == "blow-up" || !get("pivot_x") || !get("rotation") || !get("pivot_x_start") || !get("rotation_start")) return;
+      // The motion after the start-up transient: from `pivot_x_start` / `rotation_start` to the end.
+      p.slide = *get("pivot_x") - *get("pivot_x_start");
+      p.rotation = std::abs(*get("rotation") - *get("rotation_start"));
+      const bool slides = p.slide > s.slide_threshold, rotates = p.rotation > s.rotation_threshold;
+      p.dem = slides ? (rotates ? 3 : 1) : (rotates ? 2 : 0);
+    });
+    const char code[] = {'.', 'S', 'T', 'X'};
+    std::ostringstream map;
+    map << "alpha (deg):          ";
+    for (double a : s.alphas) map << fmt::format("{:>3.0f}", a * 180.0 / std::numbers::pi);
+    map << "\n";
+    nlohmann::json rows = nlohmann::json::array();
+    int total_checked = 0, total_agree = 0, total_excluded = 0;
+    for (std::size_t b = 0; b < s.blocks.size(); ++b)
+      for (std::size_t f = 0; f < s.phis.size(); ++f) {
+        std::string ref_row, dem_row, gb_row, marks;
+        int checked = 0, agree = 0, excluded = 0;
+        for (const Point& p : pts) {
+          if (p.block != b || p.phi != f) continue;
+          ref_row += fmt::format("{:>3}", code[p.ref]);
+          gb_row += code[p.gb];
+          dem_row += fmt::format("{:>3}", p.dem < 0 ? '?' : code[p.dem]);
+          if (p.near_boundary) {
+            ++excluded;
+            marks += "  ~";
+          } else {
+            ++checked;
+            const bool ok = p.dem == p.ref;
+            agree += ok;
+            marks += ok ? "   " : "  !";
+          }
+        }
+        const auto [cols, rows_n] = s.blocks[b];
+        const std::string shape = fmt::format("{}x{} (b/h={:.3g})", cols, rows_n, double(cols) / rows_n);
+        const double phi_deg = s.phis[f] * 180.0 / std::numbers::pi;
+        map << fmt::format("{:<17} phi={:<3.0f} ref {}\n", shape, phi_deg, ref_row);
+        map << fmt::format("{:<17}         DEM {}\n", "", dem_row);
+        map << fmt::format("{:<17}             {}   [G&B: {}]\n", "", marks, gb_row);
+        rows.push_back({shape, fmt::format("{:.0f}", phi_deg), fmt::format("{}/{}", agree, checked), excluded});
+        total_checked += checked;
+        total_agree += agree;
+        total_excluded += excluded;
+        Check c = s.checks.front();
+        add_check(fmt::format("{}, φ = {:.0f}°: grid points where DEM ≠ Sagaseta", shape, phi_deg), 0.0,
+                  static_cast<double>(checked - agree), c, std::nullopt,
+                  fmt::format("{} points checked, {} within {:.1f}° (in α or φ) of a boundary not checked", checked, excluded,
+                              s.margin * 180.0 / std::numbers::pi));
+      }
+    map << "(. stable, S slide, T topple, X slide + topple; ~ within the margin of a mode boundary, not checked; ! disagrees)\n";
+    s_tables.push_back({{"title", "Mode map: Sagaseta (ref) against the DEM"}, {"preformatted", map.str()}});
+    s_tables.push_back({{"title", "Agreement per block and friction angle"},
+                        {"columns", {"block", "phi [deg]", "agree / checked", "excluded (near a boundary)"}},
+                        {"rows", rows}});
+    s_setup_extra["points checked"] = total_checked;
+    s_setup_extra["points agreeing"] = total_agree;
+    s_setup_extra["points excluded"] = total_excluded;
+    if (opt.print) fmt::print("{}", map.str());
   } else {  // stability: bisection on the parameter, per variant
     std::vector<std::optional<double>> limits(s.variants.size());
     std::vector<std::string> notes(s.variants.size());
@@ -514,6 +640,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   }
 
   nlohmann::json setup = s.setup;
+  for (const auto& [k, v] : s_setup_extra.items()) setup[k] = v;
   setup["variants"] = s.variants.size();
   if (s.kind == Kind::refinement) setup["levels"] = s.values;
   if (speed_n) setup["mean element-steps per second"] = speed_sum / static_cast<double>(speed_n);
@@ -521,10 +648,10 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   prov["overrides"] = s.set;
   nlohmann::json result = {
       {"study", s.name}, {"title", s.title}, {"requirement", s.requirement},
-      {"kind", s.kind == Kind::refinement ? "refinement" : s.kind == Kind::single ? "single" : "stability"},
+      {"kind", s.kind == Kind::refinement ? "refinement" : s.kind == Kind::single ? "single" : s.kind == Kind::stability ? "stability" : "mode_map"},
       {"case", s.case_path}, {"parameter", s.parameter}, {"reference", s.reference_text}, {"setup", setup},
       {"provenance", prov}, {"passed", passed}, {"checks", checks}, {"series", series_json},
-      {"figures", figures}, {"tables", nlohmann::json::array()}};
+      {"figures", figures}, {"tables", s_tables}};
   std::ofstream(out / "result.json") << result.dump(2) << "\n";
 
   if (opt.print) {

@@ -1,0 +1,524 @@
+// Matsui & Nishimura's face law (model.md §2, M1–M16) at the level of one contact: segment positions,
+// the tension cut-off, the Mohr–Coulomb limit, healing, the sign of the moment, exact against
+// linearised increments, and frame objectivity under a rigid rotation of a bonded pair.
+//
+// Axes (face_contact.hpp): n from element 1 towards element 2, t = n rotated by +90°, the segment at ξ
+// sits at r1 n + a ξ t from the centre of element 1. Turning element 1 by a small angle θ about its
+// centre moves that point by θ(−aξ, r1) in (n, t), so the approach there is −aξθ and the slip r1θ;
+// for a finite θ the point goes to (r1 cos θ − aξ sin θ, r1 sin θ + aξ cos θ), giving
+//   u(ξ) = −r1(1 − cos θ) − aξ sin θ,   v(ξ) = r1 sin θ + aξ(cos θ − 1)        (M2 with ξ → −ξ)
+// These hand-derived forms are the expectations below.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "dem/face_contact.hpp"
+#include "dem/vec2.hpp"
+
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+namespace {
+
+constexpr double tol = 1e-12;
+constexpr double kn = 1e6, ks = 4e5;  // discrete springs per segment [N/m]
+constexpr double a = 0.01;            // half face length [m]
+constexpr double area = 2.0 * a * 0.1;  // A = 2 a l with l = 0.1 m (M1)
+constexpr double inv_dt = 1e4;
+
+dem::FaceConstants constants(int n, double eta_n = 0.0, double eta_s = 0.0) {
+  dem::FaceConstants c;
+  c.kn = kn;
+  c.ks = ks;
+  c.eta_n = eta_n;
+  c.eta_s = eta_s;
+  c.half_length = a;
+  c.segment_area = area / n;
+  return c;
+}
+
+dem::FaceLaw face_law(int n, dem::SegmentPositions pos = dem::SegmentPositions::centres) {
+  dem::FaceLaw l;
+  l.segments = n;
+  l.positions = pos;
+  l.tensile_strength = 1e15;  // never breaks unless a test says so
+  l.cohesion = 1e15;          // never slides unless a test says so
+  l.tan_phi = 0.5;
+  return l;
+}
+
+dem::FaceKinematics normal_step(double du, double r1 = a, double r2 = a) {
+  dem::FaceKinematics k;
+  k.du_projected = du;
+  k.du_exact = du;
+  k.r1 = r1;
+  k.r2 = r2;
+  return k;
+}
+
+}  // namespace
+
+TEST_CASE("face: segment positions xi_i = (2i - 1 - N)/N (M13.1) and the face ends (M13.2)", "[face]") {
+  using dem::SegmentPositions;
+  // written out by hand from (M13.1), i = 1..N
+  const std::vector<std::vector<double>> expected = {
+      {0.0}, {-0.5, 0.5}, {-2.0 / 3.0, 0.0, 2.0 / 3.0}, {-0.75, -0.25, 0.25, 0.75}, {-0.8, -0.4, 0.0, 0.4, 0.8}};
+  for (int n = 1; n <= 5; ++n) {
+    CAPTURE(n);
+    for (int i = 0; i < n; ++i) {
+      CAPTURE(i);
+      CHECK_THAT(dem::segment_xi(SegmentPositions::centres, n, i),
+                 WithinAbs(expected[static_cast<std::size_t>(n - 1)][static_cast<std::size_t>(i)], 1e-15));
+    }
+  }
+  // (M13.2): ξ_i = 2i − 3, i = 1, 2
+  CHECK(dem::segment_xi(SegmentPositions::ends, 2, 0) == -1.0);
+  CHECK(dem::segment_xi(SegmentPositions::ends, 2, 1) == 1.0);
+}
+
+TEST_CASE("face: a segment breaks exactly when P_e < -sigma_t A/N and then carries nothing (M8, M9)", "[face]") {
+  const int n = GENERATE(1, 2, 3, 4, 5);
+  CAPTURE(n);
+  auto law = face_law(n);
+  law.tensile_strength = 2e6;                  // σ_t [Pa]
+  const double limit = 2e6 * area / n;         // σ_t A/N [N]
+  const double d_crit = limit / kn;            // opening at which P_e = −σ_t A/N
+  const auto c = constants(n);
+  auto k = normal_step(0.0);
+  k.dv_translation = 1e-6;  // a shear increment, so that an intact link also carries shear
+
+  SECTION("just below the strength: intact") {
+    dem::FaceHistory h;
+    dem::start_face(law, c, 0.0, true, h);
+    k.du_projected = -d_crit * (1.0 - 1e-9);
+    const auto f = dem::face_contact_force(law, c, k, inv_dt, h);
+    CHECK(f.links == n);
+    CHECK(f.any_tensile);
+    CHECK_THAT(f.p, WithinRel(-n * limit * (1.0 - 1e-9), 1e-9));
+    CHECK_THAT(f.q, WithinRel(n * ks * 1e-6, 1e-9));
+    for (int i = 0; i < n; ++i) CHECK(h.seg[static_cast<std::size_t>(i)].linked == 1);
+  }
+  SECTION("just above the strength: broken, no normal or shear force") {
+    dem::FaceHistory h;
+    dem::start_face(law, c, 0.0, true, h);
+    k.du_projected = -d_crit * (1.0 + 1e-9);
+    const auto f = dem::face_contact_force(law, c, k, inv_dt, h);
+    CHECK(f.links == 0);
+    CHECK(f.p == 0.0);
+    CHECK(f.q == 0.0);
+    CHECK(f.p_moment == 0.0);
+    for (int i = 0; i < n; ++i) {
+      CHECK(h.seg[static_cast<std::size_t>(i)].linked == 0);
+      CHECK(h.seg[static_cast<std::size_t>(i)].intact == 0);
+      CHECK(h.seg[static_cast<std::size_t>(i)].pe == 0.0);
+      CHECK(h.seg[static_cast<std::size_t>(i)].qe == 0.0);
+    }
+  }
+}
+
+TEST_CASE("face: with a rotation only the segments beyond the strength break", "[face]") {
+  // N = 4, ξ = −0.75, −0.25, 0.25, 0.75. Opening d_crit plus a turn of element 1 with aΔθ = 0.1 d_crit:
+  // u_i = −d_crit(1 + 0.1 ξ_i) → the two segments with ξ > 0 break, the two with ξ < 0 hold.
+  const int n = 4;
+  auto law = face_law(n);
+  law.tensile_strength = 2e6;
+  const double limit = 2e6 * area / n, d_crit = limit / kn;
+  const auto c = constants(n);
+  dem::FaceHistory h;
+  dem::start_face(law, c, 0.0, true, h);
+  auto k = normal_step(-d_crit);
+  k.dphi1 = 0.1 * d_crit / a;
+  const auto f = dem::face_contact_force(law, c, k, inv_dt, h);
+  CHECK(f.links == 2);
+  CHECK(h.seg[0].linked == 1);
+  CHECK(h.seg[1].linked == 1);
+  CHECK(h.seg[2].linked == 0);
+  CHECK(h.seg[3].linked == 0);
+  // P = −limit[(1 − 0.075) + (1 − 0.025)] = −1.9 limit;  Σ aξP = a limit(0.75·0.925 + 0.25·0.975)
+  CHECK_THAT(f.p, WithinRel(-1.9 * limit, 1e-12));
+  CHECK_THAT(f.p_moment, WithinRel(0.9375 * a * limit, 1e-12));
+}
+
+TEST_CASE("face: the shear force per segment is capped at (c + sigma tan phi) A/N, without dashpot (M10, M11)",
+          "[face]") {
+  // N = 2 (ξ = ∓0.5), c = 2 kPa → c A/N = 2 N; tan φ = 0.5; η_n = 100, η_s = 50 N·s/m, 1/Δt = 1e4.
+  const int n = 2;
+  auto law = face_law(n);
+  law.cohesion = 2e3;
+  law.tan_phi = 0.5;
+  const auto c = constants(n, 100.0, 50.0);
+  dem::FaceHistory h;
+  dem::start_face(law, c, 0.0, true, h);
+  // Step 1: approach 10 µm and a turn aΔθ = 5 µm: u = 10 µm − ξ·5 µm → 12.5 µm, 7.5 µm → P_e = 12.5, 7.5 N.
+  // Limits 2 + 0.5 P_e = 8.25 N and 5.75 N; the trial shear 4e5·1e-4 = 40 N is far beyond → sliding.
+  auto k = normal_step(1e-5);
+  k.dphi1 = 5e-6 / a;
+  k.dv_translation = 1e-4 - a * k.dphi1;  // so that Δv = Δv̄ + r1Δφ1 = 1e-4 with r1 = a
+  auto f = dem::face_contact_force(law, c, k, inv_dt, h);
+  CHECK_THAT(h.seg[0].pe, WithinRel(12.5, tol));
+  CHECK_THAT(h.seg[1].pe, WithinRel(7.5, tol));
+  CHECK_THAT(h.seg[0].qe, WithinRel(8.25, tol));
+  CHECK_THAT(h.seg[1].qe, WithinRel(5.75, tol));
+  CHECK_THAT(f.q, WithinRel(14.0, tol));  // no Q_d at the limit
+  // P = 20 N + dashpots η_n Δu_i/Δt = 100·(12.5 + 7.5)e-6·1e4 = 20 N
+  CHECK_THAT(f.p, WithinRel(40.0, tol));
+  // Step 2: back by 1 µm in shear, no normal motion: Q_e = 7.85, 5.35 (below the limits: sticks),
+  // Q_d = 50·(−1e-6)·1e4 = −0.5 per segment → Q = 13.2 − 1.0 = 12.2 N
+  k = normal_step(0.0);
+  k.dv_translation = -1e-6 - a * 0.0;
+  f = dem::face_contact_force(law, c, k, inv_dt, h);
+  CHECK_THAT(h.seg[0].qe, WithinRel(7.85, tol));
+  CHECK_THAT(h.seg[1].qe, WithinRel(5.35, tol));
+  CHECK_THAT(f.q, WithinRel(12.2, tol));
+  // The sign of the cap follows the shear: a large negative increment caps at −8.25, −5.75
+  k.dv_translation = -1e-3;
+  f = dem::face_contact_force(law, c, k, inv_dt, h);
+  CHECK_THAT(f.q, WithinRel(-14.0, tol));
+}
+
+TEST_CASE("face: tau_y < 0 (tension beyond c/tan phi) leaves no shear force (M11)", "[face]") {
+  // N = 2 without rotation, c A/N = 2 N, tan φ = 0.5 → τ_y A/N = 2 + 0.5 P_e < 0 for P_e < −4 N.
+  const int n = 2;
+  auto law = face_law(n);
+  law.cohesion = 2e3;
+  law.tan_phi = 0.5;
+  const auto c = constants(n, 0.0, 50.0);
+  dem::FaceHistory h;
+  dem::start_face(law, c, 0.0, true, h);
+  auto k = normal_step(-1e-5);  // P_e = −10 N per segment, intact (σ_t huge)
+  k.dv_translation = 1e-6;      // trial Q_e = 0.4 N, Q_d = 0.5 N
+  auto f = dem::face_contact_force(law, c, k, inv_dt, h);
+  CHECK(f.links == 2);
+  CHECK_THAT(f.p, WithinRel(-20.0, tol));
+  CHECK(f.q == 0.0);
+  CHECK(h.seg[0].qe == 0.0);
+  // Back to P_e = −3 N: τ_y A/N = 0.5 N → Q_e capped at 0.5 per segment (trial 0 + 0.8: the
+  // shear was zeroed in the step before); Q_d dropped at the cap
+  k = normal_step(7e-6);
+  k.dv_translation = 2e-6;
+  f = dem::face_contact_force(law, c, k, inv_dt, h);
+  CHECK_THAT(h.seg[0].pe, WithinRel(-3.0, 1e-9));
+  CHECK_THAT(f.q, WithinRel(1.0, 1e-9));
+}
+
+TEST_CASE("face: healing decides whether a re-formed link regains tension and cohesion", "[face]") {
+  // N = 1, σ_t = 2 MPa → σ_t A = 4000 N; c = 2 kPa → c A = 4 N; tan φ = 0.5.
+  const bool healing = GENERATE(false, true);
+  CAPTURE(healing);
+  auto law = face_law(1);
+  law.tensile_strength = 2e6;
+  law.cohesion = 2e3;
+  law.tan_phi = 0.5;
+  law.healing = healing;
+  const auto c = constants(1);
+  const double strength = 4000.0, d_crit = strength / kn;
+  dem::FaceHistory h;
+  dem::start_face(law, c, 0.0, true, h);
+  // break it
+  auto f = dem::face_contact_force(law, c, normal_step(-2.0 * d_crit), inv_dt, h);
+  REQUIRE(f.links == 0);
+  // pushed back: u = −2 d_crit + 2 d_crit + 1 µm ≥ 0 → re-forms with P_e = K_n u = 1 N
+  f = dem::face_contact_force(law, c, normal_step(2.0 * d_crit + 1e-6), inv_dt, h);
+  REQUIRE(f.links == 1);
+  CHECK_THAT(f.p, WithinRel(1.0, 1e-9));
+  // shear beyond any limit: the cap is τ_y A = c A + P_e tan φ = 4.5 N with healing, 0.5 N without
+  auto k = normal_step(0.0);
+  k.dv_translation = 1e-3;
+  f = dem::face_contact_force(law, c, k, inv_dt, h);
+  CHECK_THAT(f.q, WithinRel(healing ? 4.5 : 0.5, 1e-9));
+  CHECK(f.any_tensile == healing);
+  // a pull to P_e = −σ_t A/2: holds with healing, breaks (σ_t = 0) without
+  f = dem::face_contact_force(law, c, normal_step(-1e-6 - 0.5 * d_crit), inv_dt, h);
+  CHECK(f.links == (healing ? 1 : 0));
+  if (healing) CHECK_THAT(f.p, WithinRel(-0.5 * strength, 1e-9));
+  else CHECK(f.p == 0.0);
+}
+
+TEST_CASE("face: an unbonded contact starts without tension and cohesion unless healing", "[face]") {
+  const bool healing = GENERATE(false, true);
+  auto law = face_law(2);
+  law.tensile_strength = 2e6;
+  law.healing = healing;
+  const auto c = constants(2);
+  dem::FaceHistory h;
+  dem::start_face(law, c, 0.0, false, h);
+  const auto f = dem::face_contact_force(law, c, normal_step(-1e-6), inv_dt, h);  // P_e = −1 N
+  CHECK(f.links == (healing ? 2 : 0));
+}
+
+TEST_CASE("face: start_face links an unbonded segment iff u0 >= 0, with P_e = K_n u0", "[face]") {
+  auto law = face_law(3);
+  const auto c = constants(3);
+  dem::FaceHistory h;
+  dem::start_face(law, c, 2e-6, false, h);
+  for (int i = 0; i < 3; ++i) {
+    CHECK(h.seg[static_cast<std::size_t>(i)].linked == 1);
+    CHECK_THAT(h.seg[static_cast<std::size_t>(i)].pe, WithinRel(2.0, tol));
+  }
+  dem::start_face(law, c, -2e-6, false, h);
+  for (int i = 0; i < 3; ++i) CHECK(h.seg[static_cast<std::size_t>(i)].linked == 0);
+  // it links once the approach closes the gap: 1 µm more → still apart, 3 µm more → u = 1 µm
+  auto f = dem::face_contact_force(law, c, normal_step(1e-6), inv_dt, h);
+  CHECK(f.links == 0);
+  f = dem::face_contact_force(law, c, normal_step(2e-6), inv_dt, h);
+  CHECK(f.links == 3);
+  CHECK_THAT(f.p, WithinRel(3 * 1.0, 1e-9));
+}
+
+TEST_CASE("face: a bonded face starts linked and intact, also a hair apart (P_e = K_n u0 < 0)", "[face]") {
+  auto law = face_law(2);
+  law.tensile_strength = 2e6;  // σ_t A/N = 2000 N
+  const auto c = constants(2);
+  dem::FaceHistory h;
+  dem::start_face(law, c, -2e-6, true, h);
+  for (int i = 0; i < 2; ++i) {
+    CHECK(h.seg[static_cast<std::size_t>(i)].linked == 1);
+    CHECK(h.seg[static_cast<std::size_t>(i)].intact == 1);
+    CHECK_THAT(h.seg[static_cast<std::size_t>(i)].pe, WithinRel(-2.0, tol));
+  }
+  const auto f = dem::face_contact_force(law, c, normal_step(0.0), inv_dt, h);
+  CHECK(f.links == 2);
+  CHECK_THAT(f.p, WithinRel(-4.0, tol));
+}
+
+TEST_CASE("face: a turn of element 1 gives P_e(i) = -K_n a xi_i dtheta and a restoring moment", "[face]") {
+  // Linearised normal law (M15.1): Δu(ξ) = Δū − aξ(Δθ1 − Δθ2) in our axes. With Δū = 0:
+  // P_e(i) = −K_n a ξ_i Δθ;  Σ aξ_i P(i) = −K_n a² Δθ Σξ_i²;  Σξ_i² = (N² − 1)/(3N) for centres, 2 for ends.
+  // Shear (M15.2): Δv = r1Δθ per segment → Q = N K_s r1 Δθ; M1 = −r1 Q + Σ aξP opposes the turn.
+  struct Layout {
+    dem::SegmentPositions pos;
+    int n;
+    double sum_xi2;
+  };
+  const auto lay = GENERATE(Layout{dem::SegmentPositions::centres, 1, 0.0},
+                            Layout{dem::SegmentPositions::centres, 2, 0.5},
+                            Layout{dem::SegmentPositions::centres, 3, 8.0 / 9.0},
+                            Layout{dem::SegmentPositions::centres, 4, 1.25},
+                            Layout{dem::SegmentPositions::centres, 5, 1.6},
+                            Layout{dem::SegmentPositions::ends, 2, 2.0});
+  CAPTURE(lay.n, static_cast<int>(lay.pos));
+  CHECK_THAT(lay.sum_xi2, WithinAbs((lay.pos == dem::SegmentPositions::ends) ? 2.0 : (lay.n * lay.n - 1.0) / (3.0 * lay.n), 1e-15));
+  const double dth = GENERATE(1e-4, -3e-4);
+  auto law = face_law(lay.n, lay.pos);
+  const auto c = constants(lay.n);
+  const double r1 = 0.012;
+  dem::FaceHistory h;
+  dem::start_face(law, c, 0.0, true, h);
+  auto k = normal_step(0.0, r1, a);
+  k.dphi1 = dth;
+  const auto f = dem::face_contact_force(law, c, k, inv_dt, h);
+  for (int i = 0; i < lay.n; ++i) {
+    const double xi = dem::segment_xi(lay.pos, lay.n, i);
+    CHECK_THAT(h.seg[static_cast<std::size_t>(i)].pe, WithinAbs(-kn * a * xi * dth, 1e-12 * kn * a * std::abs(dth)));
+  }
+  CHECK_THAT(f.p, WithinAbs(0.0, 1e-12 * kn * a * std::abs(dth)));
+  CHECK_THAT(f.p_moment, WithinAbs(-kn * a * a * dth * lay.sum_xi2, 1e-12 * kn * a * a * std::abs(dth)));
+  CHECK_THAT(f.q, WithinRel(lay.n * ks * r1 * dth, 1e-12));
+  const double m1 = -r1 * f.q + f.p_moment;
+  CHECK(m1 * dth < 0.0);  // restoring
+}
+
+TEST_CASE("face: the exact increments follow the finite-rotation displacements (M2, M3) path-independently",
+          "[face]") {
+  // Element 1 turns by θ in m unequal steps, element 2 turns by −θ/2, the centres stay (frame fixed).
+  // Expected per segment (header; element 2's point at (−r2, aξ) from its centre turns the other way):
+  //   u(ξ) = −r1(1 − cos θ1) − r2(1 − cos θ2) − aξ(sin θ1 − sin θ2)
+  //   v(ξ) =  r1 sin θ1 + r2 sin θ2 + aξ(cos θ1 − cos θ2)
+  const int n = 3;
+  auto law = face_law(n);
+  law.normal = dem::NormalIncrement::exact;
+  law.tangential = dem::TangentialIncrement::exact;
+  const auto c = constants(n);
+  const double r1 = 0.012, r2 = a, theta = 0.7;
+  dem::FaceHistory h;
+  dem::start_face(law, c, 0.0, true, h);
+  const std::vector<double> parts = {0.1, 0.3, 0.05, 0.25, 0.2, 0.1};  // sums to 1
+  for (double p : parts) {
+    auto k = normal_step(0.0, r1, r2);
+    k.dphi1 = p * theta;
+    k.dphi2 = -0.5 * p * theta;
+    dem::face_contact_force(law, c, k, inv_dt, h);
+  }
+  const double t1 = theta, t2 = -0.5 * theta;
+  for (int i = 0; i < n; ++i) {
+    const double xi = dem::segment_xi(law.positions, n, i);
+    const double u = -r1 * (1 - std::cos(t1)) - r2 * (1 - std::cos(t2)) - a * xi * (std::sin(t1) - std::sin(t2));
+    const double v = r1 * std::sin(t1) + r2 * std::sin(t2) + a * xi * (std::cos(t1) - std::cos(t2));
+    CAPTURE(i, xi);
+    CHECK_THAT(h.seg[static_cast<std::size_t>(i)].pe, WithinAbs(kn * u, 1e-12 * kn * a));
+    CHECK_THAT(h.seg[static_cast<std::size_t>(i)].qe, WithinAbs(ks * v, 1e-12 * ks * a));
+  }
+}
+
+TEST_CASE("face: exact increments tend to the linearised ones as the rotation goes to zero, error O(theta^2)",
+          "[face]") {
+  // Same motion as above for the exact law (M3.1, M3.2) and the linearised one (M15.1, M15.2), in 10
+  // equal steps. The difference of the spring displacements is second order in θ:
+  //   u_exact − u_lin = −r1θ1²/2 − r2θ2²/2 + O(θ³),  v_exact − v_lin = −aξ(θ1² − θ2²)/2 + O(θ³).
+  const int n = 2;
+  const double r1 = 0.012, r2 = a;
+  auto run = [&](bool exact, double theta, std::vector<double>& u, std::vector<double>& v) {
+    auto law = face_law(n, dem::SegmentPositions::ends);
+    law.normal = exact ? dem::NormalIncrement::exact : dem::NormalIncrement::linearised;
+    law.tangential = exact ? dem::TangentialIncrement::exact : dem::TangentialIncrement::linearised;
+    const auto c = constants(n);
+    dem::FaceHistory h;
+    dem::start_face(law, c, 0.0, true, h);
+    for (int s = 0; s < 10; ++s) {
+      auto k = normal_step(0.0, r1, r2);
+      k.dphi1 = theta / 10;
+      k.dphi2 = -0.5 * theta / 10;
+      dem::face_contact_force(law, c, k, inv_dt, h);
+    }
+    u = {h.seg[0].pe / kn, h.seg[1].pe / kn};
+    v = {h.seg[0].qe / ks, h.seg[1].qe / ks};
+  };
+  std::vector<double> errors;
+  for (double theta : {1e-2, 1e-3, 1e-4}) {
+    std::vector<double> ue, ve, ul, vl;
+    run(true, theta, ue, ve);
+    run(false, theta, ul, vl);
+    double err = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double xi = dem::segment_xi(dem::SegmentPositions::ends, n, i);
+      const double t1 = theta, t2 = -0.5 * theta;
+      CAPTURE(theta, i);
+      // linearised values, by hand: u = −aξ(θ1 − θ2), v = r1θ1 + r2θ2
+      CHECK_THAT(ul[static_cast<std::size_t>(i)], WithinAbs(-a * xi * (t1 - t2), 1e-12 * a * theta));
+      CHECK_THAT(vl[static_cast<std::size_t>(i)], WithinAbs(r1 * t1 + r2 * t2, 1e-12 * a * theta));
+      // leading term of the difference
+      CHECK_THAT(ue[static_cast<std::size_t>(i)] - ul[static_cast<std::size_t>(i)],
+                 WithinAbs(-0.5 * (r1 * t1 * t1 + r2 * t2 * t2), 0.3 * a * theta * theta * theta + 1e-15));
+      CHECK_THAT(ve[static_cast<std::size_t>(i)] - vl[static_cast<std::size_t>(i)],
+                 WithinAbs(-0.5 * a * xi * (t1 * t1 - t2 * t2), 0.3 * a * theta * theta * theta + 1e-15));
+      err = std::max({err, std::abs(ue[static_cast<std::size_t>(i)] - ul[static_cast<std::size_t>(i)]),
+                      std::abs(ve[static_cast<std::size_t>(i)] - vl[static_cast<std::size_t>(i)])});
+    }
+    errors.push_back(err);
+  }
+  // observed order 2 per decade of θ
+  for (std::size_t k = 1; k < errors.size(); ++k) {
+    const double order = std::log10(errors[k - 1] / errors[k]);
+    CAPTURE(k, order);
+    CHECK(order > 1.95);
+    CHECK(order < 2.05);
+  }
+}
+
+TEST_CASE("face: the literal reading of (M3.2) counts the rotation twice; Hisatake's (M16) ignores translation",
+          "[face]") {
+  const int n = 2;
+  const double r1 = 0.012, r2 = a, t1 = 0.2, t2 = -0.1;
+  auto shear = [&](dem::TangentialIncrement tan, double dv_frame) {
+    auto law = face_law(n);
+    law.normal = dem::NormalIncrement::exact;
+    law.tangential = tan;
+    const auto c = constants(n);
+    dem::FaceHistory h;
+    dem::start_face(law, c, 0.0, true, h);
+    auto k = normal_step(0.0, r1, r2);
+    k.dphi1 = t1;
+    k.dphi2 = t2;
+    k.dv_frame = dv_frame;
+    k.dv_translation = dv_frame;
+    dem::face_contact_force(law, c, k, inv_dt, h);
+    return std::vector<double>{h.seg[0].qe / ks, h.seg[1].qe / ks};
+  };
+  const auto exact = shear(dem::TangentialIncrement::exact, 3e-4);
+  const auto literal = shear(dem::TangentialIncrement::literal, 3e-4);
+  const auto hisatake = shear(dem::TangentialIncrement::hisatake, 3e-4);
+  for (std::size_t i = 0; i < 2; ++i) {
+    CHECK_THAT(literal[i] - exact[i], WithinAbs(r1 * t1 + r2 * t2, 1e-15));  // the extra r θ of (M2.4)
+    CHECK_THAT(exact[i] - hisatake[i], WithinAbs(3e-4, 1e-15));             // the translation v̄
+  }
+}
+
+// ---- frame objectivity (model.md §2: "a rigid-body rotation of a bonded pair produces no force") ----
+
+namespace {
+
+/// Kinematics of one step of two centres moving from (c1o, c2o) to (c1, c2), written independently
+/// of the simulation: normal and tangent from the new line of centres.
+dem::FaceKinematics pair_kinematics(dem::Vec2 c1o, dem::Vec2 c2o, dem::Vec2 c1, dem::Vec2 c2, double dphi1,
+                                    double dphi2, double r1, double r2) {
+  const dem::Vec2 d_old = c2o - c1o, d_new = c2 - c1;
+  const dem::Vec2 nrm = d_new * (1.0 / dem::norm(d_new)), t = dem::perp(nrm);
+  const dem::Vec2 rel = (c1 - c1o) - (c2 - c2o);
+  dem::FaceKinematics k;
+  k.du_projected = dem::dot(rel, nrm);
+  k.dv_translation = dem::dot(rel, t);
+  k.du_exact = dem::norm(d_old) - dem::norm(d_new);
+  k.dbeta = std::atan2(dem::cross(d_old, d_new), dem::dot(d_old, d_new));
+  k.dphi1 = dphi1;
+  k.dphi2 = dphi2;
+  k.r1 = r1;
+  k.r2 = r2;
+  return k;
+}
+
+}  // namespace
+
+TEST_CASE("face: a rigid rotation of a bonded pair by 90 deg leaves the exact law's forces unchanged",
+          "[face][objectivity]") {
+  // Pair turned about its midpoint in m equal steps Δ = (π/2)/m, both elements turning with it.
+  const double preload = GENERATE(0.0, 1e-5);  // initial overlap δ [m]
+  const int m = GENERATE(90, 900);
+  const int n = 3;
+  CAPTURE(preload, m);
+  const double r1 = 0.012, r2 = a, dist = r1 + r2 - preload;
+  auto law = face_law(n);
+  law.normal = dem::NormalIncrement::exact;
+  law.tangential = dem::TangentialIncrement::exact;
+  const auto c = constants(n);
+  dem::FaceHistory h;
+  dem::start_face(law, c, preload, true, h);
+  const double step = 0.5 * std::numbers::pi / m;
+  auto centre = [&](double beta, double s) { return dem::Vec2{s * std::cos(beta), s * std::sin(beta)} * (0.5 * dist); };
+  dem::FaceForce f;
+  for (int k = 0; k < m; ++k) {
+    const double bo = k * step, bn = (k + 1) * step;
+    const auto kin = pair_kinematics(centre(bo, -1), centre(bo, 1), centre(bn, -1), centre(bn, 1), step, step, r1, r2);
+    f = dem::face_contact_force(law, c, kin, inv_dt, h);
+    REQUIRE_THAT(f.p, WithinAbs(n * kn * preload, 1e-12 * kn * a));
+    REQUIRE_THAT(f.q, WithinAbs(0.0, 1e-12 * ks * a));
+    REQUIRE_THAT(f.p_moment, WithinAbs(0.0, 1e-12 * kn * a * a));
+  }
+  CHECK_THAT(h.theta1, WithinAbs(0.0, 1e-12));
+  CHECK_THAT(h.theta2, WithinAbs(0.0, 1e-12));
+}
+
+TEST_CASE("face: under the same rigid rotation the linearised law errs by second order per step", "[face][objectivity]") {
+  // Per step, Δx1 − Δx2 = −D(n_new − n_old): Δū = −D(1 − cos Δ), Δv̄ = −D sin Δ, and (M15.2) adds
+  // (r1 + r2)Δ: Δv = (r1 + r2 − D)Δ + D(Δ − sin Δ) = δΔ + D(Δ − sin Δ), with δ the overlap.
+  // After m steps: P_e = K_n(δ − m D(1 − cos Δ)) and Q_e = K_s m(δΔ + D(Δ − sin Δ)) per segment.
+  // Without preload both vanish like Δ as Δ → 0 for a fixed total angle (mDΔ²/2, mDΔ³/6);
+  // a preloaded contact keeps a shear K_s δ Θ that does not vanish — K5's lever r_i, not r_i − δ/2.
+  const double preload = GENERATE(0.0, 1e-5);
+  const int m = GENERATE(90, 900);
+  const int n = 2;
+  CAPTURE(preload, m);
+  const double r1 = 0.012, r2 = a, dist = r1 + r2 - preload;
+  auto law = face_law(n);
+  const auto c = constants(n);
+  dem::FaceHistory h;
+  dem::start_face(law, c, preload, true, h);
+  const double step = 0.5 * std::numbers::pi / m;
+  auto centre = [&](double beta, double s) { return dem::Vec2{s * std::cos(beta), s * std::sin(beta)} * (0.5 * dist); };
+  for (int k = 0; k < m; ++k) {
+    const double bo = k * step, bn = (k + 1) * step;
+    dem::face_contact_force(law, c, pair_kinematics(centre(bo, -1), centre(bo, 1), centre(bn, -1), centre(bn, 1), step, step, r1, r2),
+                            inv_dt, h);
+  }
+  const double pe = kn * (preload - m * dist * (1 - std::cos(step)));
+  const double qe = ks * m * (preload * step + dist * (step - std::sin(step)));
+  CHECK_THAT(h.seg[0].pe, WithinRel(pe, 1e-6));
+  CHECK_THAT(h.seg[1].pe, WithinRel(pe, 1e-6));
+  CHECK_THAT(h.seg[0].qe, WithinRel(qe, 1e-6));
+  if (preload == 0.0) {
+    // second order per step: the whole 90° turn leaves an approach error of about D Θ Δ/2
+    const double theta = 0.5 * std::numbers::pi;
+    CHECK_THAT(h.seg[0].pe / kn, WithinRel(-dist * theta * step / 2, 1e-3));
+  }
+}
