@@ -4,8 +4,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <random>
+#include <tuple>
 #include <vector>
 
 #include "dem/simulation.hpp"
@@ -138,4 +140,174 @@ TEST_CASE("PRE pair: an undamped bonded pair conserves energy over 100 periods (
   WARN("energy drift over 100 periods, " << (exact ? "exact" : "linearised") << " increments: " << rel << " (" << steps << " steps)");
   CHECK(sim.contact(0, 1, false).links == 2);
   CHECK(rel < 1e-3);
+}
+
+// ---- (M18): N = 1, segment centres, linearised increments, disk mass = Cundall's disk DEM --------
+
+namespace {
+
+/// About 16 disks (r = 8–12 mm) thrown into a 20 cm wide box under gravity, with friction and
+/// damping; `pre`: the same run with PREs and the face law in the configuration of (M18).
+dem::Model drop_in_box(bool pre, std::uint64_t seed, double eta_n = 30.0) {
+  auto m = test::make_model({{"grain", 2650.0}, {"wall", 0.0}}, 5e-5);
+  m.gravity = {0.0, -9.81};
+  const double kn = 1e5, ks = 2.5e4, eta_s = 0.5 * eta_n;
+  for (auto [a, b, mu] : {std::tuple{0, 0, 0.5}, std::tuple{0, 1, 0.3}}) {
+    dem::PairLaw law = test::linear_law(kn, ks, mu, eta_n, eta_s);
+    if (pre) {
+      law.kind = dem::LawKind::face;
+      law.face.segments = 1;
+      law.face.positions = dem::SegmentPositions::centres;
+      law.face.normal = dem::NormalIncrement::linearised;
+      law.face.tangential = dem::TangentialIncrement::linearised;
+      law.face.tensile_strength = 0.0;
+      law.face.cohesion = 0.0;
+      law.face.tan_phi = mu;
+      law.face_kn = kn;
+      law.face_ks = ks;
+    }
+    test::set_law(m, a, b, law);
+  }
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) {
+      const double r = 0.010 + 0.002 * u(rng);
+      const double vscale = std::getenv("VS") ? std::atof(std::getenv("VS")) : 0.2;
+      const double dy = std::getenv("DY") ? std::atof(std::getenv("DY")) : 0.035;
+      const dem::Vec2 x{0.04 + 0.04 * col + 0.003 * u(rng), 0.013 + dy * row + 0.001 * u(rng)};
+      dem::add_element(m, pre ? dem::Shape::pre : dem::Shape::disk, 0, r, x, {vscale * u(rng), vscale * u(rng)}, 25 * vscale * u(rng),
+                       dem::PreMass::disk);
+    }
+  m.walls.push_back(test::segment_wall({0.0, 0.0}, {0.2, 0.0}, 1, "floor"));
+  m.walls.push_back(test::segment_wall({0.0, 0.0}, {0.0, 0.3}, 1, "left"));
+  m.walls.push_back(test::segment_wall({0.2, 0.0}, {0.2, 0.3}, 1, "right"));
+  return m;
+}
+
+/// Contacts of the PRE run whose force of the last step was computed while their cores did not
+/// overlap: x, y are the positions at the start of that step (those the forces were computed with).
+int apart_but_loaded(const dem::Simulation& s, const std::vector<double>& x, const std::vector<double>& y) {
+  const auto& e = s.model().elements;
+  int n = 0;
+  for (const auto& c : s.contacts()) {
+    double gap = 0.0;
+    const dem::Vec2 ci{x[c.i], y[c.i]};
+    if (c.wall) gap = dem::norm(dem::closest_point(s.model().walls[c.j], ci) - ci) - e.radius[c.i];
+    else gap = std::hypot(x[c.j] - x[c.i], y[c.j] - y[c.i]) - e.radius[c.i] - e.radius[c.j];
+    if (gap > 0.0 && c.fn != 0.0) ++n;
+  }
+  return n;
+}
+
+}  // namespace
+
+namespace {
+
+struct M18Run {
+  long first_diff = -1;   // first step after which some position or rotation differs (−1: none)
+  long first_apart = -1;  // first step in which a PRE contact carried force with its cores apart
+  double max_diff = 0.0;  // largest position difference over the run [m] (rotations × 1 cm)
+  long formed_before = 0; // contacts formed before first_apart (or in the whole run)
+};
+
+M18Run run_m18(std::uint64_t seed, long steps, double eta_n = 30.0) {
+  dem::Simulation disk(drop_in_box(false, seed, eta_n)), pre(drop_in_box(true, seed, eta_n));
+  const auto& ed = disk.model().elements;
+  const auto& ep = pre.model().elements;
+  M18Run r;
+  std::size_t contacts_before = 0;
+  for (long k = 0; k < steps; ++k) {
+    const std::vector<double> x = ep.x, y = ep.y;
+    disk.step();
+    pre.step();
+    double d = 0.0;
+    for (std::size_t i = 0; i < ed.size(); ++i)
+      d = std::max({d, std::abs(ed.x[i] - ep.x[i]), std::abs(ed.y[i] - ep.y[i]), 0.01 * std::abs(ed.phi[i] - ep.phi[i])});
+    if (d > 0.0 && r.first_diff < 0) r.first_diff = k;
+    if (r.first_apart < 0 && apart_but_loaded(pre, x, y) > 0) r.first_apart = k;
+    const std::size_t now = disk.contact_count();
+    if (r.first_apart < 0 && now > contacts_before) r.formed_before += static_cast<long>(now - contacts_before);
+    contacts_before = now;
+    r.max_diff = std::max(r.max_diff, d);
+  }
+  return r;
+}
+
+}  // namespace
+
+// Cundall's disk contact (K3) ends when the cores stop overlapping; a PRE face ends when its last link
+// breaks, i.e. when P_e < 0 (σ_t = 0). With Cundall's incremental onset the elastic force at the
+// moment of geometric separation is generally still positive (it includes the approach inside the gap
+// of the first step), so the two runs part company exactly there — and only there.
+TEST_CASE("PRE (M18): N = 1, centres, linearised, disk mass is the disk DEM bit for bit until a contact "
+          "separates with positive elastic force", "[face][simulation][m18]") {
+  const std::uint64_t seed = GENERATE(1, 2, 3);
+  CAPTURE(seed);
+  const double eta = GENERATE(30.0, 150.0, 600.0);
+  const auto r = run_m18(seed, 4000, eta);
+  CAPTURE(r.first_diff, r.first_apart, r.max_diff, r.formed_before);
+  WARN(seed << " " << eta << " " << r.first_diff << " " << r.first_apart << " " << r.formed_before << " " << r.max_diff);
+  CHECK(r.first_diff == r.first_apart);  // identical (==) in every step before, different from then on
+  CHECK(r.formed_before >= 20);          // a real multi-contact run up to there
+  CHECK((r.first_apart < 0 || r.first_apart >= 500));
+}
+
+// BUG (spec conflict, model.md §2 M18 vs "States"): the PRE face keeps a contact whose cores have
+// separated while P_e ≥ 0, the disk contact does not, so whole runs differ (by mm here). Passes once
+// faces without an intact link end at geometric separation (or the M18 claim is restricted).
+TEST_CASE("PRE (M18): the whole drop-in-a-box run agrees with the disk DEM to round-off",
+          "[face][simulation][m18][!mayfail]") {
+  const std::uint64_t seed = GENERATE(1, 2, 3);
+  CAPTURE(seed);
+  const auto r = run_m18(seed, 4000);
+  CAPTURE(r.first_diff, r.first_apart);
+  CHECK(r.max_diff < 1e-12);
+}
+
+namespace {
+
+/// Two equal elements overlapping by 0.1 mm at the start, element 0 moving along the contact tangent.
+dem::Model touching_at_start(bool pre) {
+  auto m = test::make_model({{"grain", 2650.0}}, 1e-5);
+  dem::PairLaw law = test::linear_law(1e5, 2.5e4, 0.5, 30.0, 15.0);
+  if (pre) {
+    law.kind = dem::LawKind::face;
+    law.face.tan_phi = 0.5;
+    law.face_kn = 1e5;
+    law.face_ks = 2.5e4;
+  }
+  test::set_law(m, 0, 0, law);
+  const auto shape = pre ? dem::Shape::pre : dem::Shape::disk;
+  dem::add_element(m, shape, 0, 0.01, {0.0, 0.0}, {0.0, 0.1}, 0.0, dem::PreMass::disk);
+  dem::add_element(m, shape, 0, 0.01, {0.0199, 0.0}, {}, 0.0, dem::PreMass::disk);
+  return m;
+}
+
+}  // namespace
+
+// references.md §1.4, plain start: e_0 = K x(0) — the elastic forces of a contact present at the
+// start are those of the initial displacement (overlap 0.1 mm, no tangential displacement), the first
+// increment Δx_0 = v(0)Δt drives only the dashpots. Here Δu_s = 0.1 m/s · Δt: f_n = K_n·1e-4 = 10 N,
+// f_s = η_s Δu_s/Δt = 15 · 0.1 = 1.5 N.
+TEST_CASE("disk contact present at the start: e_n = K_n overlap, e_s = 0 after step 0", "[contact][simulation]") {
+  dem::Simulation sim(touching_at_start(false));
+  sim.step();
+  const auto c = sim.contact(0, 1, false);
+  CHECK_THAT(c.fn, WithinRel(10.0, 1e-9));
+  CHECK_THAT(c.fs, WithinRel(1.5, 1e-9));
+}
+
+// BUG: sweep_face_pairs/walls start a face present at the start (or with onset = overlap) with
+// u0 = overlap − Δu so that P_e = K_n·overlap after the step, but Q_e starts at 0 and then takes the
+// whole first increment: Q_e = K_s Δu_s = 0.025 N here, which the disk law (e_s = −K_sΔu_s + K_sΔu_s = 0)
+// does not have. Fix: start the shear of each segment at −K_s Δv(ξ_i) as well (or let the first step
+// of a contact with a geometric onset skip accumulating its increments).
+TEST_CASE("PRE face present at the start: P_e = K_n overlap, Q_e = 0 after step 0 (as the disk law)",
+          "[face][simulation][m18][!mayfail]") {
+  dem::Simulation sim(touching_at_start(true));
+  sim.step();
+  const auto c = sim.contact(0, 1, false);
+  CHECK_THAT(c.fn, WithinRel(10.0, 1e-9));
+  CHECK_THAT(c.fs, WithinRel(1.5, 1e-9));
 }

@@ -48,6 +48,8 @@ struct Check {
   std::vector<std::size_t> fit_levels;
   std::vector<std::string> only;
   Expect expect = Expect::within;
+  bool compare_richardson = false;  // refinement: analyse without the reference, then compare the
+                                    // Richardson extrapolation (not the finest level) with it
 };
 
 /// A figure from the time series of runs (the finest level of each listed variant), with an
@@ -69,6 +71,7 @@ struct Study {
   std::vector<std::string> set;
   std::vector<Variant> variants;
   std::vector<double> values;       // refinement levels, coarse → fine
+  bool inverse = false;             // h = 1/value (refining by raising N or an element count)
   double low = 0.0, high = 0.0, rel_tol = 1e-4;  // stability bisection
   std::vector<Check> checks;
   std::vector<Figure> figures;
@@ -181,6 +184,9 @@ Study read_study(const fs::path& file) {
       for (int64_t k = 0; k < levels; ++k) s.values.push_back(base / std::pow(ratio, static_cast<double>(k)));
     }
     if (s.values.size() < 2) fail(s, "refinement.values", "need at least two levels");
+    const std::string hk = (*r)["h"].value_or(std::string("value"));
+    if (hk != "value" && hk != "inverse") fail(s, "refinement.h", "expected \"value\" (h = the parameter, e.g. Δt) or \"inverse\" (h = 1/parameter, e.g. N)");
+    s.inverse = hk == "inverse";
   } else if (s.kind == Kind::stability) {
     const toml::table* r = root["stability"].as_table();
     if (!r) fail(s, "stability", "missing [stability] table for kind = \"stability\"");
@@ -244,6 +250,9 @@ Study read_study(const fs::path& file) {
     c.only = strings(s, *t, "variants");
     const std::string ex = (*t)["expect"].value_or(std::string("within"));
     c.expect = ex == "above" ? Expect::above : ex == "below" ? Expect::below : Expect::within;
+    const std::string cmp = (*t)["compare"].value_or(std::string("finest"));
+    if (cmp != "finest" && cmp != "richardson") fail(s, "check.compare", "expected \"finest\" or \"richardson\"");
+    c.compare_richardson = cmp == "richardson";
     s.checks.push_back(c);
   }
   if (const toml::array* fa = root["figure"].as_array()) {
@@ -380,7 +389,11 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       const Variant& v = s.variants[k / nl];
       std::vector<std::string> sets = s.set;
       sets.insert(sets.end(), v.set.begin(), v.set.end());
-      if (s.kind == Kind::refinement) sets.push_back(fmt::format("{}={:.17g}", s.parameter, s.values[k % nl]));
+      if (s.kind == Kind::refinement) {
+        const double v = s.values[k % nl];
+        sets.push_back(v == std::floor(v) && std::abs(v) < 1e15 ? fmt::format("{}={}", s.parameter, static_cast<long long>(v))
+                                                               : fmt::format("{}={:.17g}", s.parameter, v));
+      }
       fs::path run_dir;
       if (k % nl == nl - 1) {  // the finest level feeds the figures
         std::vector<std::string> q;
@@ -433,18 +446,23 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
         for (std::size_t l = 0; l < nl; ++l) {
           const auto& p = runs[vi * nl + l].probes.at(c.probe);
           if (!p) continue;
-          h.push_back(s.values[l]);
+          h.push_back(s.inverse ? 1.0 / s.values[l] : s.values[l]);
           q.push_back(*p);
         }
         std::optional<double> order;
         if (h.size() >= 2) {
           ConvergenceOptions co;
-          co.reference = ref;
+          if (!c.compare_richardson) co.reference = ref;
           co.expected_order = c.expected_order;
           co.fit_levels = c.fit_levels;
           Series ser = analyse_convergence(h, q, co, label(c, v), s.parameter_label);
-          order = ser.fitted_order;
+          order = c.compare_richardson && h.size() >= 3 ? ser.three_level_order : ser.fitted_order;
           series_json.push_back(to_json(ser));
+          if (c.compare_richardson) {
+            note += fmt::format(" Richardson extrapolation compared (GCI of the finest level {})", fmt_value(ser.gci_fine));
+            add_check(label(c, v) + " (Richardson)", ref, ser.richardson, c, order, note);
+            continue;
+          }
           if (h.size() < nl) note += fmt::format(" {} of {} levels gave no value", nl - h.size(), nl);
         } else {
           note += " fewer than two levels gave a value";
