@@ -25,4 +25,9 @@ double damping_ratio_from_restitution(double e);
 double lattice_kn(double youngs_modulus, double poisson);
 double lattice_ks(double youngs_modulus, double poisson);
 
+/// Matsui's single-pair time-step bound (M26), Δt < h_n √(m / K) with K the whole face's normal
+/// stiffness N·K_n (the paper prints k_n, a stiffness per unit area: model.md §2). It bounds one pair
+/// only; a bonded lattice needs the assembly bound of stability.hpp (references.md §4.6).
+double pre_pair_time_step(double damping_ratio, double mass, double face_stiffness);
+
 }  // namespace dem
