@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "dem/case_reader.hpp"
+#include "dem/text.hpp"
 #include "dem/simulation.hpp"
 
 namespace dem {
@@ -14,18 +15,6 @@ namespace dem {
 namespace {
 
 // ---- overrides --------------------------------------------------------------------------------
-
-std::vector<std::string> split_path(const std::string& p) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  for (std::size_t k = 0; k <= p.size(); ++k) {
-    if (k == p.size() || p[k] == '.') {
-      out.push_back(p.substr(start, k - start));
-      start = k + 1;
-    }
-  }
-  return out;
-}
 
 bool is_index(const std::string& s) {
   return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
@@ -54,7 +43,7 @@ void apply_override(toml::table& root, const std::string& kv) {
       throw CaseError(fmt::format("{}: cannot read the value: {}", origin, e.description()));
     }
   }
-  const auto parts = split_path(path);
+  const auto parts = split(path, '.');
   toml::node* cur = &root;
   std::string so_far;
   for (std::size_t k = 0; k + 1 < parts.size(); ++k) {

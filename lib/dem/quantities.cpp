@@ -1,5 +1,7 @@
 #include "dem/quantities.hpp"
 
+#include "dem/text.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -8,17 +10,6 @@
 namespace dem {
 
 namespace {
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  for (std::size_t k = 0; k <= s.size(); ++k)
-    if (k == s.size() || s[k] == '.') {
-      out.push_back(s.substr(start, k - start));
-      start = k + 1;
-    }
-  return out;
-}
 
 /// "e12" → 12, else −1.
 long element_ref(const std::string& s, const Model& m) {
@@ -38,7 +29,7 @@ long wall_ref(const std::string& s, const Model& m) {
 }  // namespace
 
 QuantityFn compile_quantity(const std::string& name, const Model& m) {
-  const auto p = split(name);
+  const auto p = split(name, '.');
   auto bad = [&](const std::string& why) {
     return std::invalid_argument(fmt::format("quantity \"{}\": {}", name, why));
   };

@@ -11,6 +11,7 @@
 #include <fmt/os.h>
 
 #include "dem/quantities.hpp"
+#include "dem/text.hpp"
 #include "dem/simulation.hpp"
 #include "dem/vtk_writer.hpp"
 
@@ -113,7 +114,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
     if (!series.empty()) {
       csv.open(opt.out_dir / "series.csv");
       csv << "# case: " << c.path.string() << ", code " << provenance()["code_version"].get<std::string>() << "\n";
-      for (std::size_t k = 0; k < series.size(); ++k) csv << (k ? "," : "") << c.output.series[k];
+      for (std::size_t k = 0; k < series.size(); ++k) csv << (k ? "," : "") << csv_field(c.output.series[k]);
       csv << "\n";
     }
     if (c.output.vtk) std::filesystem::create_directories(opt.out_dir / "vtk");

@@ -407,7 +407,7 @@ TEST_CASE("face: exact increments tend to the linearised ones as the rotation go
   }
 }
 
-TEST_CASE("face: the literal reading of (M3.2) counts the rotation twice; Hisatake's (M16) ignores translation",
+TEST_CASE("face: the literal reading of (M3.2) counts the rotation twice, Hisatake's (M16) ignores translation",
           "[face]") {
   const int n = 2;
   const double r1 = 0.012, r2 = a, t1 = 0.2, t2 = -0.1;

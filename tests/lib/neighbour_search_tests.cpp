@@ -94,7 +94,7 @@ TEST_CASE("neighbour search: the cell list finds exactly the pairs of the all-pa
   CHECK(as_pairs(found) == expected);
 }
 
-TEST_CASE("neighbour search: elements at one point all pair up; inactive ones never appear", "[search]") {
+TEST_CASE("neighbour search: elements at one point all pair up, inactive ones never appear", "[search]") {
   const auto e = random_elements(40, Radii::uniform, Layout::same_point, 0.25, 7);
   dem::NeighbourSearch search;
   std::vector<dem::CandidatePair> found;

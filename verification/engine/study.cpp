@@ -16,6 +16,7 @@
 
 #include "dem/case_file.hpp"
 #include "dem/run.hpp"
+#include "dem/text.hpp"
 #include "dem/units.hpp"
 #include "engine/convergence.hpp"
 #include "ref/registry.hpp"
@@ -613,13 +614,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       std::vector<double> xs, ys;
       while (std::getline(in, line)) {
         if (line.empty() || line[0] == '#') continue;
-        std::vector<std::string> cells;
-        std::size_t start = 0;
-        for (std::size_t k = 0; k <= line.size(); ++k)
-          if (k == line.size() || line[k] == ',') {
-            cells.push_back(line.substr(start, k - start));
-            start = k + 1;
-          }
+        const std::vector<std::string> cells = dem::split_csv(line);
         if (header.empty()) {
           header = cells;
           continue;
