@@ -67,10 +67,11 @@ void apply_override(toml::table& root, const std::string& kv) {
   const std::string& last = parts.back();
   toml::node* v = parsed.get("v");
   if (auto* tbl = cur->as_table()) {
-    v->visit([&](auto& n) { tbl->insert_or_assign(last, n); });
+    // move, not copy: toml++ keeps the source ("--set …") of a moved node only
+    v->visit([&](auto& n) { tbl->insert_or_assign(last, std::move(n)); });
   } else if (auto* arr = cur->as_array(); arr && is_index(last) && std::stoul(last) < arr->size()) {
     const auto idx = std::stoul(last);
-    v->visit([&](auto& n) { arr->replace(arr->begin() + static_cast<std::ptrdiff_t>(idx), n); });
+    v->visit([&](auto& n) { arr->replace(arr->begin() + static_cast<std::ptrdiff_t>(idx), std::move(n)); });
   } else {
     throw CaseError(fmt::format("{}: {}: cannot set this path", origin, path));
   }

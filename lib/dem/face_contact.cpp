@@ -16,16 +16,20 @@ inline Trig trig(double t1, double t2) { return {std::sin(t1), std::cos(t1), std
 
 }  // namespace
 
-void start_face(const FaceLaw& law, const FaceConstants& c, double u0, bool bonded, FaceHistory& h) {
+void start_face(const FaceLaw& law, const FaceConstants& c, double u0, bool bonded, bool geometric,
+                FaceHistory& h) {
   h = FaceHistory{};
+  h.geometric_start = geometric ? 1 : 0;
   const int n = law.segments;
   for (int i = 0; i < n; ++i) {
     SegmentState& s = h.seg[i];
     s.u = u0;
     s.intact = (bonded || law.healing) ? 1 : 0;
-    // link: unlinked → linked when u(ξ) ≥ 0; a bonded face is linked from the start even when
-    // round-off leaves its touching overlap a hair below zero
-    if (u0 >= 0.0 || bonded) {
+    // link: unlinked → linked when u(ξ) ≥ 0. A geometric start (the contact exists at t = 0 or forms
+    // with the overlap onset) links every segment with P_e = K_n u0, u0 = overlap − this step's
+    // increment, so that after the step P_e = K_n × overlap exactly as the disk law's e_n (a segment
+    // still apart after the step then breaks at once, carrying nothing); so does a bonded face.
+    if (u0 >= 0.0 || bonded || geometric) {
       s.linked = 1;
       s.pe = c.kn * u0;
     }
@@ -72,6 +76,7 @@ FaceForce face_contact_force(const FaceLaw& law, const FaceConstants& c, const F
   }
 
   FaceForce f;
+  const bool first = h.geometric_start != 0;
   for (int i = 0; i < n; ++i) {
     SegmentState& s = h.seg[i];
     const double xi = segment_xi(law.positions, n, i);
@@ -86,6 +91,7 @@ FaceForce face_contact_force(const FaceLaw& law, const FaceConstants& c, const F
       s.qe = 0.0;
     } else {
       s.pe += c.kn * du;  // (M6)
+      if (h.geometric_start) s.qe = -c.ks * dv;
       s.qe += c.ks * dv;
     }
     const double sigma_t = s.intact ? law.tensile_strength : 0.0;
@@ -113,6 +119,7 @@ FaceForce face_contact_force(const FaceLaw& law, const FaceConstants& c, const F
     ++f.links;
     f.any_tensile = f.any_tensile || sigma_t > 0.0;
   }
+  if (first) h.geometric_start = 0;
   return f;
 }
 

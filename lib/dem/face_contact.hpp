@@ -54,6 +54,8 @@ struct SegmentState {
 
 struct FaceHistory {
   double theta1 = 0.0, theta2 = 0.0;  // rotations relative to the contact frame since contact start
+  std::uint8_t geometric_start = 0;   // the first step starts the shear at zero (as the disk law's
+                                      // e_s = −K_s Δu_s + K_s Δu_s): set by start_face, cleared after it
   std::array<SegmentState, kMaxSegments> seg{};
 };
 
@@ -87,7 +89,10 @@ inline double segment_xi(SegmentPositions pos, int n, int i) {
 /// first increment), and links if u0 >= 0. `bonded`: the links start intact (tensile strength and
 /// cohesion); otherwise they start as broken-and-re-formed links (compression and friction only,
 /// unless healing).
-void start_face(const FaceLaw& law, const FaceConstants& c, double u0, bool bonded, FaceHistory& h);
+/// `geometric`: the contact starts from the geometric state (present at t = 0, or the overlap onset):
+/// the first step's tangential increment does not load the shear springs (it drives the dashpots).
+void start_face(const FaceLaw& law, const FaceConstants& c, double u0, bool bonded, bool geometric,
+                FaceHistory& h);
 
 /// One step of the face law (M3–M12). Updates the history and returns the resultants.
 FaceForce face_contact_force(const FaceLaw& law, const FaceConstants& c, const FaceKinematics& k,

@@ -32,8 +32,9 @@ struct LinearSpringDashpot {
 };
 
 struct ContactForce {
-  double fn = 0.0;  // normal force, compression positive [N]
-  double fs = 0.0;  // shear force [N]
+  double fn = 0.0;      // normal force, compression positive [N]
+  double fs = 0.0;      // shear force [N]
+  bool opened = false;  // K8: the contact opened (ended) in this step
 };
 
 /// One step of the contact law. du_n, du_s: relative displacement increments of the step (K5),
@@ -48,14 +49,14 @@ inline ContactForce linear_contact_force(const LinearSpringDashpot& law, double 
   if (h.en < 0.0) {                    // (K8, K12): no tension, the contact opens
     h.en = 0.0;
     h.es = 0.0;
-    return {};
+    return {0.0, 0.0, true};
   }
   const double limit = law.mu * h.en;  // (K13): Coulomb slider
   if (std::abs(h.es) > limit) {
     h.es = std::copysign(limit, h.es);
     ds = 0.0;
   }
-  ContactForce f{h.en + dn, h.es + ds};  // (K14)
+  ContactForce f{h.en + dn, h.es + ds, false};  // (K14)
   if (law.end_rule == EndRule::total && f.fn < 0.0) return {};
   return f;
 }

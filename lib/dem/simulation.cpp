@@ -1,6 +1,7 @@
 #include "dem/simulation.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -70,15 +71,16 @@ void increment_k19(double* __restrict d, const double* __restrict v, double dt, 
 void advance(double* __restrict x, const double* __restrict d, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) x[i] += d[i];
 }
-/// Number of elements displaced by at least √limit2 from the reference positions.
-std::size_t count_displaced(const double* __restrict x, const double* __restrict y, const double* __restrict xr,
-                            const double* __restrict yr, double limit2, std::size_t n) {
-  std::size_t over = 0;
+/// Whether an element moved by at least √limit2 from its reference position: d² − limit2 ≥ 0 has a clear
+/// sign bit (an AND of the bit patterns, which the compiler vectorises; a comparison it does not).
+bool any_displaced(const double* __restrict x, const double* __restrict y, const double* __restrict xr,
+                   const double* __restrict yr, double limit2, std::size_t n) {
+  std::uint64_t all_negative = ~std::uint64_t{0};
   for (std::size_t i = 0; i < n; ++i) {
     const double ddx = x[i] - xr[i], ddy = y[i] - yr[i];
-    over += ddx * ddx + ddy * ddy >= limit2;
+    all_negative &= std::bit_cast<std::uint64_t>(ddx * ddx + ddy * ddy - limit2);
   }
-  return over;
+  return (all_negative >> 63) == 0;
 }
 /// f = m g (K15).
 void weight(double* __restrict f, const double* __restrict m, double g, std::size_t n) {
@@ -141,10 +143,12 @@ void Simulation::apply_preloads() {
     wall_inc.push_back(w.increment);
     w.increment = {};
   }
+  preloading_ = true;
   sweep_linear_pairs(0.0);
   sweep_face_pairs(0.0);
   sweep_linear_walls(0.0);
   sweep_face_walls(0.0);
+  preloading_ = false;
   for (std::size_t k = 0; k < m_.walls.size(); ++k) m_.walls[k].increment = wall_inc[k];
   e.dx = keep_dx;
   e.dy = keep_dy;
@@ -166,8 +170,7 @@ bool Simulation::needs_rebuild() const {
   if (!(limit > 0.0)) return true;
   const double limit2 = limit * limit * (1.0 - 1e-12);
   const Elements& e = m_.elements;
-  const std::size_t over = count_displaced(e.x.data(), e.y.data(), x_ref_.data(), y_ref_.data(), limit2, e.size());
-  return over != 0;
+  return any_displaced(e.x.data(), e.y.data(), x_ref_.data(), y_ref_.data(), limit2, e.size());
 }
 
 void Simulation::rebuild() {
@@ -245,41 +248,58 @@ void Simulation::start_linear(LinearSlot& s, double overlap, double du_n, double
   // Contacts present at the start, or formed with the overlap onset, start from the geometric
   // overlap: e_n = K_n δ after this step's increment is added (references.md §1.4: e_0 = K x(0)).
   if (step_ == 0 || law.onset == Onset::overlap) {
-    s.h.en = law.linear.kn * overlap - law.linear.kn * du_n;
-    s.h.es = -law.linear.ks * du_s;
+    s.h.en = law.linear.kn * (overlap - du_n);  // the face law's start, operation for operation (M18)
+    // The first increment of a plain start is the virtual v(0)Δt (references.md §1.4): it drives the
+    // dashpots, not the shear spring. A static preload is a real deformation: it loads the spring.
+    s.h.es = preloading_ ? 0.0 : -law.linear.ks * du_s;
   }
 }
 
 void Simulation::sweep_linear_pairs(double inv_dt) {
   Elements& e = m_.elements;
+  const double* const x = e.x.data();
+  const double* const y = e.y.data();
+  const double* const radius = e.radius.data();
+  const std::uint8_t* const active = e.active.data();
+  const double* const dx = e.dx.data();
+  const double* const dy = e.dy.data();
+  const double* const dphi = e.dphi.data();
+  double* const fx_e = e.fx.data();
+  double* const fy_e = e.fy.data();
+  double* const moment = e.moment.data();
+  const PairLaw* const laws = m_.laws.data();
   for (LinearSlot& s : linear_pairs_) {
     const std::uint32_t i = s.i, j = s.j;
-    const double ddx = e.x[j] - e.x[i], ddy = e.y[j] - e.y[i];
-    const double rs = e.radius[i] + e.radius[j];
+    const double ddx = x[j] - x[i], ddy = y[j] - y[i];
+    const double rs = radius[i] + radius[j];
     const double r2 = ddx * ddx + ddy * ddy;
-    if (r2 > rs * rs || !e.active[i] || !e.active[j]) {  // (K3): not touching
+    if (r2 > rs * rs || !active[i] || !active[j]) {  // (K3): not touching
       if (s.touching) reset_slot(s);
       continue;
     }
     const double dist = std::sqrt(r2);
     const double nx = ddx / dist, ny = ddy / dist;  // cos α, sin α (K3): from i towards j
-    const double ux = e.dx[i] - e.dx[j], uy = e.dy[i] - e.dy[j];
+    const double ux = dx[i] - dx[j], uy = dy[i] - dy[j];
     const double du_n = ux * nx + uy * ny;                                      // (K5)
-    const double du_s = -ux * ny + uy * nx + e.radius[i] * e.dphi[i] + e.radius[j] * e.dphi[j];
+    const double du_s = -ux * ny + uy * nx + radius[i] * dphi[i] + radius[j] * dphi[j];
     if (!s.touching) start_linear(s, rs - dist, du_n, du_s, e.mass[i], e.mass[j]);
-    const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
+    const PairLaw& law = laws[static_cast<std::size_t>(s.law)];
     const ContactForce f = linear_contact_force(law.linear, s.eta_n, s.eta_s, du_n, du_s, inv_dt, s.h);
+    if (f.opened) {  // (K8): the contact ends; if the cores still overlap it forms anew next step
+      reset_slot(s);
+      continue;
+    }
     s.f = f;
     s.nx = nx;
     s.ny = ny;
     // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
     const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;
-    e.fx[i] += fx;
-    e.fy[i] += fy;
-    e.fx[j] -= fx;
-    e.fy[j] -= fy;
-    e.moment[i] -= e.radius[i] * f.fs;
-    e.moment[j] -= e.radius[j] * f.fs;
+    fx_e[i] += fx;
+    fy_e[i] += fy;
+    fx_e[j] -= fx;
+    fy_e[j] -= fy;
+    moment[i] -= radius[i] * f.fs;
+    moment[j] -= radius[j] * f.fs;
   }
 }
 
@@ -303,6 +323,10 @@ void Simulation::sweep_linear_walls(double inv_dt) {
     if (!s.touching) start_linear(s, r - dist, du_n, du_s, e.mass[i], 0.0);
     const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
     const ContactForce f = linear_contact_force(law.linear, s.eta_n, s.eta_s, du_n, du_s, inv_dt, s.h);
+    if (f.opened) {
+      reset_slot(s);
+      continue;
+    }
     s.f = f;
     s.nx = nx;
     s.ny = ny;
@@ -376,8 +400,10 @@ void Simulation::sweep_face_pairs(double inv_dt) {
       s.touching = 1;
       s.c = face_constants(law, e.radius[i], e.radius[j], reduced_mass(e.mass[i], e.mass[j]), m_.thickness);
       const bool bonded = bond;
-      const double u0 = (step_ == 0 || law.onset == Onset::overlap) ? (rs - dist) - k.du_projected : 0.0;
-      start_face(law.face, s.c, u0, bonded, s.h);
+      const bool geometric = step_ == 0 || law.onset == Onset::overlap;
+      const double u0 = geometric ? (rs - dist) - k.du_projected : 0.0;
+      start_face(law.face, s.c, u0, bonded, geometric, s.h);
+      if (preloading_) s.h.geometric_start = 0;  // a static preload loads the shear springs
     }
     const FaceForce f = face_contact_force(law.face, s.c, k, inv_dt, s.h);
     s.f = f;
@@ -422,8 +448,10 @@ void Simulation::sweep_face_walls(double inv_dt) {
     if (!s.touching) {
       s.touching = 1;
       s.c = face_constants(law, r, 0.0, e.mass[i], m_.thickness);
-      const double u0 = (step_ == 0 || law.onset == Onset::overlap) ? (r - dist) - k.du_projected : 0.0;
-      start_face(law.face, s.c, u0, step_ == 0 && law.bond_at_start, s.h);
+      const bool geometric = step_ == 0 || law.onset == Onset::overlap;
+      const double u0 = geometric ? (r - dist) - k.du_projected : 0.0;
+      start_face(law.face, s.c, u0, step_ == 0 && law.bond_at_start, geometric, s.h);
+      if (preloading_) s.h.geometric_start = 0;
     }
     const FaceForce f = face_contact_force(law.face, s.c, k, inv_dt, s.h);
     s.f = f;

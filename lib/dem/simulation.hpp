@@ -74,6 +74,7 @@ class Simulation {
   double time_ = 0.0;
   std::int64_t step_ = 0;
   std::int64_t rebuilds_ = 0;
+  bool preloading_ = false;  // the static zeroth step of apply_preloads()
 };
 
 }  // namespace dem

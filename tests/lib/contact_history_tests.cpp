@@ -3,7 +3,6 @@
 // does. Both must give the same trajectory and forces to round-off: a history lost or mixed up at a
 // rebuild would reset an accumulated shear (or a bond) and show at once.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <vector>
 

@@ -9,7 +9,6 @@
 //   u(ξ) = −r1(1 − cos θ) − aξ sin θ,   v(ξ) = r1 sin θ + aξ(cos θ − 1)        (M2 with ξ → −ξ)
 // These hand-derived forms are the expectations below.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -23,8 +22,8 @@ using Catch::Matchers::WithinRel;
 namespace {
 
 constexpr double tol = 1e-12;
-constexpr double kn = 1e6, ks = 4e5;  // discrete springs per segment [N/m]
-constexpr double a = 0.01;            // half face length [m]
+constexpr double kn = 1e6, ks = 4e5;    // discrete springs per segment [N/m]
+constexpr double a = 0.01;              // half face length [m]
 constexpr double area = 2.0 * a * 0.1;  // A = 2 a l with l = 0.1 m (M1)
 constexpr double inv_dt = 1e4;
 
@@ -82,16 +81,16 @@ TEST_CASE("face: a segment breaks exactly when P_e < -sigma_t A/N and then carri
   const int n = GENERATE(1, 2, 3, 4, 5);
   CAPTURE(n);
   auto law = face_law(n);
-  law.tensile_strength = 2e6;                  // σ_t [Pa]
-  const double limit = 2e6 * area / n;         // σ_t A/N [N]
-  const double d_crit = limit / kn;            // opening at which P_e = −σ_t A/N
+  law.tensile_strength = 2e6;           // σ_t [Pa]
+  const double limit = 2e6 * area / n;  // σ_t A/N [N]
+  const double d_crit = limit / kn;     // opening at which P_e = −σ_t A/N
   const auto c = constants(n);
   auto k = normal_step(0.0);
   k.dv_translation = 1e-6;  // a shear increment, so that an intact link also carries shear
 
   SECTION("just below the strength: intact") {
     dem::FaceHistory h;
-    dem::start_face(law, c, 0.0, true, h);
+    dem::start_face(law, c, 0.0, true, /*geometric=*/false, h);
     k.du_projected = -d_crit * (1.0 - 1e-9);
     const auto f = dem::face_contact_force(law, c, k, inv_dt, h);
     CHECK(f.links == n);
@@ -102,7 +101,7 @@ TEST_CASE("face: a segment breaks exactly when P_e < -sigma_t A/N and then carri
   }
   SECTION("just above the strength: broken, no normal or shear force") {
     dem::FaceHistory h;
-    dem::start_face(law, c, 0.0, true, h);
+    dem::start_face(law, c, 0.0, true, /*geometric=*/false, h);
     k.du_projected = -d_crit * (1.0 + 1e-9);
     const auto f = dem::face_contact_force(law, c, k, inv_dt, h);
     CHECK(f.links == 0);
@@ -127,7 +126,7 @@ TEST_CASE("face: with a rotation only the segments beyond the strength break", "
   const double limit = 2e6 * area / n, d_crit = limit / kn;
   const auto c = constants(n);
   dem::FaceHistory h;
-  dem::start_face(law, c, 0.0, true, h);
+  dem::start_face(law, c, 0.0, true, /*geometric=*/false, h);
   auto k = normal_step(-d_crit);
   k.dphi1 = 0.1 * d_crit / a;
   const auto f = dem::face_contact_force(law, c, k, inv_dt, h);
@@ -150,7 +149,7 @@ TEST_CASE("face: the shear force per segment is capped at (c + sigma tan phi) A/
   law.tan_phi = 0.5;
   const auto c = constants(n, 100.0, 50.0);
   dem::FaceHistory h;
-  dem::start_face(law, c, 0.0, true, h);
+  dem::start_face(law, c, 0.0, true, /*geometric=*/false, h);
   // Step 1: approach 10 µm and a turn aΔθ = 5 µm: u = 10 µm − ξ·5 µm → 12.5 µm, 7.5 µm → P_e = 12.5, 7.5 N.
   // Limits 2 + 0.5 P_e = 8.25 N and 5.75 N; the trial shear 4e5·1e-4 = 40 N is far beyond → sliding.
   auto k = normal_step(1e-5);
@@ -186,7 +185,7 @@ TEST_CASE("face: tau_y < 0 (tension beyond c/tan phi) leaves no shear force (M11
   law.tan_phi = 0.5;
   const auto c = constants(n, 0.0, 50.0);
   dem::FaceHistory h;
-  dem::start_face(law, c, 0.0, true, h);
+  dem::start_face(law, c, 0.0, true, /*geometric=*/false, h);
   auto k = normal_step(-1e-5);  // P_e = −10 N per segment, intact (σ_t huge)
   k.dv_translation = 1e-6;      // trial Q_e = 0.4 N, Q_d = 0.5 N
   auto f = dem::face_contact_force(law, c, k, inv_dt, h);
@@ -215,7 +214,7 @@ TEST_CASE("face: healing decides whether a re-formed link regains tension and co
   const auto c = constants(1);
   const double strength = 4000.0, d_crit = strength / kn;
   dem::FaceHistory h;
-  dem::start_face(law, c, 0.0, true, h);
+  dem::start_face(law, c, 0.0, true, /*geometric=*/false, h);
   // break it
   auto f = dem::face_contact_force(law, c, normal_step(-2.0 * d_crit), inv_dt, h);
   REQUIRE(f.links == 0);
@@ -232,8 +231,10 @@ TEST_CASE("face: healing decides whether a re-formed link regains tension and co
   // a pull to P_e = −σ_t A/2: holds with healing, breaks (σ_t = 0) without
   f = dem::face_contact_force(law, c, normal_step(-1e-6 - 0.5 * d_crit), inv_dt, h);
   CHECK(f.links == (healing ? 1 : 0));
-  if (healing) CHECK_THAT(f.p, WithinRel(-0.5 * strength, 1e-9));
-  else CHECK(f.p == 0.0);
+  if (healing)
+    CHECK_THAT(f.p, WithinRel(-0.5 * strength, 1e-9));
+  else
+    CHECK(f.p == 0.0);
 }
 
 TEST_CASE("face: an unbonded contact starts without tension and cohesion unless healing", "[face]") {
@@ -243,7 +244,7 @@ TEST_CASE("face: an unbonded contact starts without tension and cohesion unless 
   law.healing = healing;
   const auto c = constants(2);
   dem::FaceHistory h;
-  dem::start_face(law, c, 0.0, false, h);
+  dem::start_face(law, c, 0.0, false, /*geometric=*/false, h);
   const auto f = dem::face_contact_force(law, c, normal_step(-1e-6), inv_dt, h);  // P_e = −1 N
   CHECK(f.links == (healing ? 2 : 0));
 }
@@ -252,12 +253,12 @@ TEST_CASE("face: start_face links an unbonded segment iff u0 >= 0, with P_e = K_
   auto law = face_law(3);
   const auto c = constants(3);
   dem::FaceHistory h;
-  dem::start_face(law, c, 2e-6, false, h);
+  dem::start_face(law, c, 2e-6, false, /*geometric=*/false, h);
   for (int i = 0; i < 3; ++i) {
     CHECK(h.seg[static_cast<std::size_t>(i)].linked == 1);
     CHECK_THAT(h.seg[static_cast<std::size_t>(i)].pe, WithinRel(2.0, tol));
   }
-  dem::start_face(law, c, -2e-6, false, h);
+  dem::start_face(law, c, -2e-6, false, /*geometric=*/false, h);
   for (int i = 0; i < 3; ++i) CHECK(h.seg[static_cast<std::size_t>(i)].linked == 0);
   // it links once the approach closes the gap: 1 µm more → still apart, 3 µm more → u = 1 µm
   auto f = dem::face_contact_force(law, c, normal_step(1e-6), inv_dt, h);
@@ -272,7 +273,7 @@ TEST_CASE("face: a bonded face starts linked and intact, also a hair apart (P_e 
   law.tensile_strength = 2e6;  // σ_t A/N = 2000 N
   const auto c = constants(2);
   dem::FaceHistory h;
-  dem::start_face(law, c, -2e-6, true, h);
+  dem::start_face(law, c, -2e-6, true, /*geometric=*/false, h);
   for (int i = 0; i < 2; ++i) {
     CHECK(h.seg[static_cast<std::size_t>(i)].linked == 1);
     CHECK(h.seg[static_cast<std::size_t>(i)].intact == 1);
@@ -292,20 +293,19 @@ TEST_CASE("face: a turn of element 1 gives P_e(i) = -K_n a xi_i dtheta and a res
     int n;
     double sum_xi2;
   };
-  const auto lay = GENERATE(Layout{dem::SegmentPositions::centres, 1, 0.0},
-                            Layout{dem::SegmentPositions::centres, 2, 0.5},
-                            Layout{dem::SegmentPositions::centres, 3, 8.0 / 9.0},
-                            Layout{dem::SegmentPositions::centres, 4, 1.25},
-                            Layout{dem::SegmentPositions::centres, 5, 1.6},
-                            Layout{dem::SegmentPositions::ends, 2, 2.0});
+  const auto lay =
+      GENERATE(Layout{dem::SegmentPositions::centres, 1, 0.0}, Layout{dem::SegmentPositions::centres, 2, 0.5},
+               Layout{dem::SegmentPositions::centres, 3, 8.0 / 9.0}, Layout{dem::SegmentPositions::centres, 4, 1.25},
+               Layout{dem::SegmentPositions::centres, 5, 1.6}, Layout{dem::SegmentPositions::ends, 2, 2.0});
   CAPTURE(lay.n, static_cast<int>(lay.pos));
-  CHECK_THAT(lay.sum_xi2, WithinAbs((lay.pos == dem::SegmentPositions::ends) ? 2.0 : (lay.n * lay.n - 1.0) / (3.0 * lay.n), 1e-15));
+  CHECK_THAT(lay.sum_xi2,
+             WithinAbs((lay.pos == dem::SegmentPositions::ends) ? 2.0 : (lay.n * lay.n - 1.0) / (3.0 * lay.n), 1e-15));
   const double dth = GENERATE(1e-4, -3e-4);
   auto law = face_law(lay.n, lay.pos);
   const auto c = constants(lay.n);
   const double r1 = 0.012;
   dem::FaceHistory h;
-  dem::start_face(law, c, 0.0, true, h);
+  dem::start_face(law, c, 0.0, true, /*geometric=*/false, h);
   auto k = normal_step(0.0, r1, a);
   k.dphi1 = dth;
   const auto f = dem::face_contact_force(law, c, k, inv_dt, h);
@@ -320,8 +320,7 @@ TEST_CASE("face: a turn of element 1 gives P_e(i) = -K_n a xi_i dtheta and a res
   CHECK(m1 * dth < 0.0);  // restoring
 }
 
-TEST_CASE("face: the exact increments follow the finite-rotation displacements (M2, M3) path-independently",
-          "[face]") {
+TEST_CASE("face: the exact increments follow the finite-rotation displacements (M2, M3) path-independently", "[face]") {
   // Element 1 turns by θ in m unequal steps, element 2 turns by −θ/2, the centres stay (frame fixed).
   // Expected per segment (header; element 2's point at (−r2, aξ) from its centre turns the other way):
   //   u(ξ) = −r1(1 − cos θ1) − r2(1 − cos θ2) − aξ(sin θ1 − sin θ2)
@@ -333,7 +332,7 @@ TEST_CASE("face: the exact increments follow the finite-rotation displacements (
   const auto c = constants(n);
   const double r1 = 0.012, r2 = a, theta = 0.7;
   dem::FaceHistory h;
-  dem::start_face(law, c, 0.0, true, h);
+  dem::start_face(law, c, 0.0, true, /*geometric=*/false, h);
   const std::vector<double> parts = {0.1, 0.3, 0.05, 0.25, 0.2, 0.1};  // sums to 1
   for (double p : parts) {
     auto k = normal_step(0.0, r1, r2);
@@ -365,7 +364,7 @@ TEST_CASE("face: exact increments tend to the linearised ones as the rotation go
     law.tangential = exact ? dem::TangentialIncrement::exact : dem::TangentialIncrement::linearised;
     const auto c = constants(n);
     dem::FaceHistory h;
-    dem::start_face(law, c, 0.0, true, h);
+    dem::start_face(law, c, 0.0, true, /*geometric=*/false, h);
     for (int s = 0; s < 10; ++s) {
       auto k = normal_step(0.0, r1, r2);
       k.dphi1 = theta / 10;
@@ -417,7 +416,7 @@ TEST_CASE("face: the literal reading of (M3.2) counts the rotation twice, Hisata
     law.tangential = tan;
     const auto c = constants(n);
     dem::FaceHistory h;
-    dem::start_face(law, c, 0.0, true, h);
+    dem::start_face(law, c, 0.0, true, /*geometric=*/false, h);
     auto k = normal_step(0.0, r1, r2);
     k.dphi1 = t1;
     k.dphi2 = t2;
@@ -431,7 +430,7 @@ TEST_CASE("face: the literal reading of (M3.2) counts the rotation twice, Hisata
   const auto hisatake = shear(dem::TangentialIncrement::hisatake, 3e-4);
   for (std::size_t i = 0; i < 2; ++i) {
     CHECK_THAT(literal[i] - exact[i], WithinAbs(r1 * t1 + r2 * t2, 1e-15));  // the extra r θ of (M2.4)
-    CHECK_THAT(exact[i] - hisatake[i], WithinAbs(3e-4, 1e-15));             // the translation v̄
+    CHECK_THAT(exact[i] - hisatake[i], WithinAbs(3e-4, 1e-15));              // the translation v̄
   }
 }
 
@@ -473,7 +472,7 @@ TEST_CASE("face: a rigid rotation of a bonded pair by 90 deg leaves the exact la
   law.tangential = dem::TangentialIncrement::exact;
   const auto c = constants(n);
   dem::FaceHistory h;
-  dem::start_face(law, c, preload, true, h);
+  dem::start_face(law, c, preload, true, /*geometric=*/false, h);
   const double step = 0.5 * std::numbers::pi / m;
   auto centre = [&](double beta, double s) { return dem::Vec2{s * std::cos(beta), s * std::sin(beta)} * (0.5 * dist); };
   dem::FaceForce f;
@@ -489,7 +488,8 @@ TEST_CASE("face: a rigid rotation of a bonded pair by 90 deg leaves the exact la
   CHECK_THAT(h.theta2, WithinAbs(0.0, 1e-12));
 }
 
-TEST_CASE("face: under the same rigid rotation the linearised law errs by second order per step", "[face][objectivity]") {
+TEST_CASE("face: under the same rigid rotation the linearised law errs by second order per step",
+          "[face][objectivity]") {
   // Per step, Δx1 − Δx2 = −D(n_new − n_old): Δū = −D(1 − cos Δ), Δv̄ = −D sin Δ, and (M15.2) adds
   // (r1 + r2)Δ: Δv = (r1 + r2 − D)Δ + D(Δ − sin Δ) = δΔ + D(Δ − sin Δ), with δ the overlap.
   // After m steps: P_e = K_n(δ − m D(1 − cos Δ)) and Q_e = K_s m(δΔ + D(Δ − sin Δ)) per segment.
@@ -503,13 +503,14 @@ TEST_CASE("face: under the same rigid rotation the linearised law errs by second
   auto law = face_law(n);
   const auto c = constants(n);
   dem::FaceHistory h;
-  dem::start_face(law, c, preload, true, h);
+  dem::start_face(law, c, preload, true, /*geometric=*/false, h);
   const double step = 0.5 * std::numbers::pi / m;
   auto centre = [&](double beta, double s) { return dem::Vec2{s * std::cos(beta), s * std::sin(beta)} * (0.5 * dist); };
   for (int k = 0; k < m; ++k) {
     const double bo = k * step, bn = (k + 1) * step;
-    dem::face_contact_force(law, c, pair_kinematics(centre(bo, -1), centre(bo, 1), centre(bn, -1), centre(bn, 1), step, step, r1, r2),
-                            inv_dt, h);
+    dem::face_contact_force(
+        law, c, pair_kinematics(centre(bo, -1), centre(bo, 1), centre(bn, -1), centre(bn, 1), step, step, r1, r2),
+        inv_dt, h);
   }
   const double pe = kn * (preload - m * dist * (1 - std::cos(step)));
   const double qe = ks * m * (preload * step + dist * (step - std::sin(step)));

@@ -2,7 +2,6 @@
 // Coulomb slider, the two end rules; and, in a two-disk run, zero force when apart and equal and
 // opposite forces. Every expected number is worked out by hand in the comments from the equations.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 
 #include "dem/linear_contact.hpp"
@@ -88,8 +87,7 @@ TEST_CASE("linear contact: a fresh contact moving apart carries no force", "[con
   CHECK(h.es == 0.0);
 }
 
-TEST_CASE("linear contact: Coulomb slider caps |e_s| at μ e_n and drops d_s only when sliding (K13)",
-          "[contact]") {
+TEST_CASE("linear contact: Coulomb slider caps |e_s| at μ e_n and drops d_s only when sliding (K13)", "[contact]") {
   const auto l = law(0.4);
   const double sign = GENERATE(1.0, -1.0);
   CAPTURE(sign);
@@ -98,8 +96,8 @@ TEST_CASE("linear contact: Coulomb slider caps |e_s| at μ e_n and drops d_s onl
     // e_n = 2000·1e-3 = 2 → limit μ e_n = 0.8; trial e_s = 500·2e-3 = 1.0 > 0.8 → e_s = ±0.8, d_s = 0
     auto f = dem::linear_contact_force(l, eta_n, eta_s, 1e-3, sign * 2e-3, inv_dt, h);
     CHECK_THAT(h.es, WithinRel(sign * 0.8, tol));
-    CHECK_THAT(f.fs, WithinRel(sign * 0.8, tol));         // no dashpot part (d_s would be ±3)
-    CHECK_THAT(f.fn, WithinRel(2.0 + 3.0, tol));          // the normal dashpot stays
+    CHECK_THAT(f.fs, WithinRel(sign * 0.8, tol));  // no dashpot part (d_s would be ±3)
+    CHECK_THAT(f.fn, WithinRel(2.0 + 3.0, tol));   // the normal dashpot stays
     // The capped value is what is stored: Δu_s = ∓0.5 mm → e_s = ±(0.8 − 0.25) = ±0.55 (sticks),
     // d_s = ∓0.75 → f_s = ∓0.2 (had the trial 1.0 been stored: e_s = ±0.75, f_s = 0)
     f = dem::linear_contact_force(l, eta_n, eta_s, 0.0, -sign * 5e-4, inv_dt, h);
@@ -124,8 +122,7 @@ TEST_CASE("linear contact: Coulomb slider caps |e_s| at μ e_n and drops d_s onl
   }
 }
 
-TEST_CASE("linear contact: end rules — elastic lets the dashpot pull, total forbids an attractive force",
-          "[contact]") {
+TEST_CASE("linear contact: end rules — elastic lets the dashpot pull, total forbids an attractive force", "[contact]") {
   dem::LinearContactHistory he, ht;
   const auto le = law(10.0, dem::EndRule::elastic), lt = law(10.0, dem::EndRule::total);
   dem::linear_contact_force(le, eta_n, eta_s, 1e-3, 1e-4, inv_dt, he);  // e_n = 2

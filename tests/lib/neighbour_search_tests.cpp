@@ -1,9 +1,8 @@
 // The cell-list neighbour search (model.md §1, K27) against an all-pairs oracle written here, on random
 // element sets: sizes, radius distributions, inactive elements, skins, sparse clouds and degenerate
 // layouts. The result must be the same set of pairs, each once with i < j, sorted by (i, j).
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -25,17 +24,37 @@ dem::Elements random_elements(std::size_t n, Radii radii, Layout layout, double 
   for (std::size_t i = 0; i < n; ++i) {
     double r = 1.0;
     switch (radii) {
-      case Radii::equal: r = 1.0; break;
-      case Radii::uniform: r = 0.5 + u01(rng); break;
-      case Radii::wide: r = std::exp(std::log(0.05) + u01(rng) * std::log(200.0)); break;  // 0.05 … 10
-      case Radii::one_giant: r = i == n / 2 ? 0.2 * side : 0.3 + 0.4 * u01(rng); break;
+      case Radii::equal:
+        r = 1.0;
+        break;
+      case Radii::uniform:
+        r = 0.5 + u01(rng);
+        break;
+      case Radii::wide:
+        r = std::exp(std::log(0.05) + u01(rng) * std::log(200.0));
+        break;  // 0.05 … 10
+      case Radii::one_giant:
+        r = i == n / 2 ? 0.2 * side : 0.3 + 0.4 * u01(rng);
+        break;
     }
     double x = 0.0, y = 0.0;
     switch (layout) {
-      case Layout::box: x = side * u01(rng); y = side * u01(rng); break;
-      case Layout::sparse: x = 1e3 * side * u01(rng); y = 1e3 * side * u01(rng); break;  // the grid must not explode
-      case Layout::line: x = side * u01(rng); y = 7.0; break;                             // zero height
-      case Layout::same_point: x = 3.0; y = -2.0; break;                                  // every pair touches
+      case Layout::box:
+        x = side * u01(rng);
+        y = side * u01(rng);
+        break;
+      case Layout::sparse:
+        x = 1e3 * side * u01(rng);
+        y = 1e3 * side * u01(rng);
+        break;  // the grid must not explode
+      case Layout::line:
+        x = side * u01(rng);
+        y = 7.0;
+        break;  // zero height
+      case Layout::same_point:
+        x = 3.0;
+        y = -2.0;
+        break;  // every pair touches
     }
     e.x.push_back(x);
     e.y.push_back(y);

@@ -3,7 +3,6 @@
 // well below the single-pair limit (references.md §4.6), and the lattice really is unstable at the
 // pair limit while it is stable at the guard's Δt.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <random>
 
@@ -147,6 +146,6 @@ TEST_CASE("stability guard: a bonded PRE lattice is limited well below the pair 
     }
     return e_max / e0;
   };
-  CHECK(grows(0.99 * guard) < 10.0);     // bounded (decays: every contact is critically damped)
+  CHECK(grows(0.99 * guard) < 10.0);      // bounded (decays: every contact is critically damped)
   CHECK(grows(0.99 * pair_limit) > 1e6);  // the collective mode blows up
 }

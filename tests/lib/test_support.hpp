@@ -2,7 +2,6 @@
 // Small helpers shared by the unit tests of the DEM core: models built in code, temporary case
 // files, messages of expected exceptions.
 #include <catch2/catch.hpp>
-
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
