@@ -465,6 +465,7 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     n.integrator = r.choice("integrator", {"K18", "K19"}, "K18") == "K18" ? Integrator::k18 : Integrator::k19;
     n.velocity_start = r.choice("velocity_start", {"plain", "staggered"}, "plain") == "plain" ? VelocityStart::plain : VelocityStart::staggered;
     n.dt = r.quantity("dt", dims::time);
+    if (const toml::node* dtn = r.node("dt")) c.dt_location = where(*dtn, file);
     rd.positive(r, "dt", n.dt);
     n.duration = r.quantity("duration", dims::time);
     rd.positive(r, "duration", n.duration);
@@ -567,7 +568,7 @@ double check_case(const Case& c) {
         "{}: numerics.dt: {:.6g} s is above the stability limit {:.6g} s of {} for this assembly "
         "(Gershgorin bound over the contacts that exist or are about to form; references.md §1.5). "
         "Use numerics.dt <= {:.6g} s, or numerics.allow_unstable = true for a stability study.",
-        file, m.numerics.dt, limit, m.numerics.integrator == Integrator::k18 ? "K18" : "K19", limit));
+        c.dt_location.empty() ? file : c.dt_location, m.numerics.dt, limit, m.numerics.integrator == Integrator::k18 ? "K18" : "K19", limit));
   }
   return limit;
 }

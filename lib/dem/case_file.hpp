@@ -55,6 +55,7 @@ struct Case {
   std::vector<ProbeSpec> probes;
   std::vector<std::string> overrides;
   nlohmann::json resolved;  // the case after overrides, as read (for provenance)
+  std::string dt_location;  // "file:line" (or "--set …") of numerics.dt, for the time-step error
 };
 
 /// Reads a case file and applies `key=value` overrides. Throws CaseError with file:line: key: ...

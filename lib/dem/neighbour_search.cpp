@@ -52,14 +52,14 @@ void NeighbourSearch::build(const Elements& e, double skin, std::vector<Candidat
     const std::uint32_t ci = cell_of_[i];
     const std::uint32_t cx = ci % nx, cy = ci / nx;
     const std::size_t first = out.size();
-    const double xi = e.x[i], yi = e.y[i], ri = e.radius[i] + skin;
+    const double xi = e.x[i], yi = e.y[i], ri = e.radius[i];
     for (std::uint32_t yy = cy ? cy - 1 : 0; yy <= std::min(cy + 1, ny - 1); ++yy) {
       for (std::uint32_t xx = cx ? cx - 1 : 0; xx <= std::min(cx + 1, nx - 1); ++xx) {
         const std::uint32_t c = yy * nx + xx;
         for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
           const std::uint32_t j = cell_items_[k];
           if (j <= i) continue;
-          const double ddx = e.x[j] - xi, ddy = e.y[j] - yi, cut = ri + e.radius[j];
+          const double ddx = e.x[j] - xi, ddy = e.y[j] - yi, cut = ri + e.radius[j] + skin;  // as the oracle
           if (ddx * ddx + ddy * ddy < cut * cut) out.push_back({i, j});
         }
       }

@@ -55,21 +55,16 @@ inline double reduced_mass(double a, double b) { return a * b / (a + b); }
 // vectorises them (it does not trust restrict on local pointers). Every lane performs the scalar code's
 // operations in the same order, and nothing is contracted into FMAs: results are bit-identical.
 
-/// v += (h f) w, per element: (K17) with w = 1/m or 1/I.
-void kick(double* __restrict v, const double* __restrict f, const double* __restrict w, double h, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) v[i] += h * f[i] * w[i];
-}
-/// d = v Δt (K18).
-void increment_k18(double* __restrict d, const double* __restrict v, double dt, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) d[i] = v[i] * dt;
-}
-/// d = (d + v Δt)/2 (K19).
-void increment_k19(double* __restrict d, const double* __restrict v, double dt, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) d[i] = 0.5 * (d[i] + v[i] * dt);
-}
-/// x += d.
-void advance(double* __restrict x, const double* __restrict d, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) x[i] += d[i];
+/// One degree of freedom of free elements: v += (h f) w (K17, w = 1/m or 1/I), then the increment
+/// d = v Δt (K18) or d = (d + v Δt)/2 (K19), then x += d.
+template <bool K19>
+void integrate_free(double* __restrict v, const double* __restrict f, const double* __restrict w,
+                    double* __restrict d, double* __restrict x, double h, double dt, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    v[i] += h * f[i] * w[i];
+    d[i] = K19 ? 0.5 * (d[i] + v[i] * dt) : v[i] * dt;
+    x[i] += d[i];
+  }
 }
 /// Whether an element moved by at least √limit2 from its reference position: d² − limit2 ≥ 0 has a clear
 /// sign bit (an AND of the bit patterns, which the compiler vectorises; a comparison it does not).
@@ -483,16 +478,10 @@ void Simulation::integrate() {
     for (std::size_t i = 0; i < n; ++i) all_free &= (act[i] != 0) & (mot[i] == Motion::free);
   }
   if (all_free) {
-    kick(e.vx.data(), e.fx.data(), e.inv_mass.data(), dt_v, n);  // (K17)
-    kick(e.vy.data(), e.fy.data(), e.inv_mass.data(), dt_v, n);
-    kick(e.omega.data(), e.moment.data(), e.inv_inertia.data(), dt_v, n);
-    auto increment = k19 ? increment_k19 : increment_k18;  // (K19) or (K18)
-    increment(e.dx.data(), e.vx.data(), dt, n);
-    increment(e.dy.data(), e.vy.data(), dt, n);
-    increment(e.dphi.data(), e.omega.data(), dt, n);
-    advance(e.x.data(), e.dx.data(), n);
-    advance(e.y.data(), e.dy.data(), n);
-    advance(e.phi.data(), e.dphi.data(), n);
+    auto dof = k19 ? integrate_free<true> : integrate_free<false>;
+    dof(e.vx.data(), e.fx.data(), e.inv_mass.data(), e.dx.data(), e.x.data(), dt_v, dt, n);
+    dof(e.vy.data(), e.fy.data(), e.inv_mass.data(), e.dy.data(), e.y.data(), dt_v, dt, n);
+    dof(e.omega.data(), e.moment.data(), e.inv_inertia.data(), e.dphi.data(), e.phi.data(), dt_v, dt, n);
   }
   for (std::size_t i = 0; i < n && !all_free; ++i) {
     if (!e.active[i]) continue;

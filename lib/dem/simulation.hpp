@@ -32,7 +32,7 @@ class Simulation {
  public:
   explicit Simulation(Model model);
 
-  /// Advances one step. Throws std::runtime_error if the assembly becomes unstable at this Δt.
+  /// Advances one step. (Blow-ups are detected by the caller: run.cpp checks energy and NaN.)
   void step();
 
   const Model& model() const { return m_; }

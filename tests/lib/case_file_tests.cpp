@@ -132,8 +132,16 @@ TEST_CASE("case file: a time step above the stability limit names the limit and 
   CHECK_THAT(dem::check_case(c), WithinRel(limit, 1e-12));
   const auto msg = test::message_of<dem::CaseError>(
       [&] { dem::check_case(dem::read_case(v.path, {"numerics.dt=" + num(1.01 * limit)})); });
-  CHECK_THAT(msg, StartsWith(v.path + ": numerics.dt: "));
+  // The value came from --set, and the message says so (a value from the file names file:line).
+  CHECK_THAT(msg, StartsWith("--set numerics.dt=" + num(1.01 * limit) + ": numerics.dt: "));
   CHECK_THAT(msg, Contains(std::string("stability limit ") + text + " s"));
+  const auto in_file = variant("unstable_in_file.toml", "ks_ratio = 0.25", "ks_ratio = 0.0");
+  const auto msg2 = test::message_of<dem::CaseError>([&] {
+    auto c2 = dem::read_case(in_file.path);
+    c2.model.numerics.dt = 1.01 * limit;  // as if the file had said so: the location is the file's line
+    dem::check_case(c2);
+  });
+  CHECK_THAT(msg2, StartsWith(in_file.path + ":") && Contains(": numerics.dt: "));
   CHECK_THAT(msg, Contains("allow_unstable"));
   c = dem::read_case(v.path, {"numerics.dt=" + num(1.01 * limit), "numerics.allow_unstable=true"});
   CHECK_NOTHROW(dem::check_case(c));
