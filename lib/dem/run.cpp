@@ -15,9 +15,7 @@
 #include "dem/simulation.hpp"
 #include "dem/vtk_writer.hpp"
 
-#ifndef DEM2D_VERSION
-#define DEM2D_VERSION "unknown"
-#endif
+#include "dem2d_version.hpp"  // generated at build time: DEM2D_VERSION
 #ifndef DEM2D_BUILD_TYPE
 #define DEM2D_BUILD_TYPE "unknown"
 #endif
