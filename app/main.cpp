@@ -3,13 +3,17 @@
 //   dem2d check CASE [--set key=value]...                check a case and print what it resolves to
 //   dem2d study STUDY [--out DIR] [--jobs N]             run one verification study (verification/*/study.toml)
 //   dem2d report [--studies DIR] [--out DIR]             write the verification report from study results
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <filesystem>
 #include <iostream>
 #include <thread>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "dem/case_file.hpp"
 #include "dem/run.hpp"
@@ -55,6 +59,42 @@ int cmd_run(const fs::path& file, const std::vector<std::string>& sets, fs::path
     return 3;
   }
   return 0;
+}
+
+/// The summary table of every study's checks, on the terminal (the report has the full tables).
+void print_summary(const fs::path& studies_dir) {
+  std::vector<fs::path> files;
+  if (fs::is_directory(studies_dir))
+    for (const auto& d : fs::directory_iterator(studies_dir))
+      if (fs::exists(d.path() / "result.json")) files.push_back(d.path() / "result.json");
+  std::sort(files.begin(), files.end());
+  int pass = 0, fail = 0;
+  fmt::print("\n{:<24} {:>7} {:>7}  {:<12} {}\n", "study", "checks", "failed", "orders", "title");
+  for (const auto& f : files) {
+    nlohmann::json j;
+    try {
+      std::ifstream(f) >> j;
+    } catch (const std::exception& e) {
+      fmt::print("{:<24} unreadable: {}\n", f.parent_path().filename().string(), e.what());
+      ++fail;
+      continue;
+    }
+    int n = 0, bad = 0, orders = 0, orders_ok = 0;
+    for (const auto& c : j.value("checks", nlohmann::json::array())) {
+      ++n;
+      if (!c.value("passed", false)) ++bad;
+      if (!c["expected_order"].is_null()) {
+        ++orders;
+        if (!c["observed_order"].is_null() &&
+            std::abs(c["observed_order"].get<double>() - c["expected_order"].get<double>()) <= c["order_band"].get<double>())
+          ++orders_ok;
+      }
+    }
+    (j.value("passed", false) ? pass : fail) += 1;
+    fmt::print("{:<24} {:>7} {:>7}  {:<12} {}\n", j.value("study", std::string("?")), n, bad,
+               orders ? fmt::format("{}/{} ok", orders_ok, orders) : std::string("-"), j.value("title", std::string()));
+  }
+  fmt::print("studies: {} passed, {} failed\n\n", pass, fail);
 }
 
 }  // namespace
@@ -106,6 +146,7 @@ int main(int argc, char** argv) {
       o.out_dir = report_dir;
       o.title = "dem2d verification report";
       o.provenance = dem::provenance();
+      print_summary(studies_dir);
       const report::Written w = report::write_report(o);
       fmt::print("report: {} studies, {} figures\n  {}\n  {}\n", w.studies, w.figures, fs::absolute(w.html).string(),
                  fs::absolute(w.markdown).string());

@@ -1,0 +1,117 @@
+// Running a case (lib/dem/run.hpp): the outputs a run writes, bit-for-bit repeatability, and a blow-up
+// that stops the run with a message while keeping what was written.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "dem/run.hpp"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+
+namespace {
+
+fs::path source(const std::string& rel) { return fs::path(DEM2D_SOURCE_DIR) / rel; }
+
+fs::path fresh_dir(const std::string& name) {
+  const auto d = fs::temp_directory_path() / "dem2d_unit_run" / name;
+  fs::remove_all(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+dem::RunResult run(const std::string& case_rel, const fs::path& out, const std::vector<std::string>& sets = {}) {
+  dem::RunOptions o;
+  o.out_dir = out;
+  return dem::run_case(dem::read_case(source(case_rel), sets), o);
+}
+
+}  // namespace
+
+TEST_CASE("A run writes the series CSV, the JSON summary with provenance, and VTK snapshots", "[run]") {
+  const auto out = fresh_dir("outputs");
+  const auto r = run("cases/impact/disk_wall.toml", out);
+  REQUIRE(r.status == "completed");
+  // CSV: a comment with the case and code version, the header, the first row at t = 0, every 10th
+  // step, and the last row: 2000 steps / 10 + 1 rows.
+  std::ifstream csv(out / "series.csv");
+  std::string line;
+  std::getline(csv, line);
+  CHECK_THAT(line, Contains("# case:") && Contains("disk_wall.toml"));
+  std::getline(csv, line);
+  CHECK(line == "t,e0.y,e0.vy,e0.fn.floor");
+  int rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  CHECK(rows == 201);
+  // JSON summary: the case, the overrides, provenance, timing, probes.
+  nlohmann::json j;
+  std::ifstream(out / "summary.json") >> j;
+  CHECK(j["status"] == "completed");
+  CHECK(j["steps"] == 2000);
+  for (const char* k : {"code_version", "build_type", "date", "machine"}) CHECK(j["provenance"].contains(k));
+  CHECK(j["element_steps_per_second"].get<double>() > 0.0);
+  CHECK(j["resolved_case"]["numerics"]["dt"] == "1e-5 s");
+  CHECK(j["probes"]["e"].is_number());
+  // VTK: a first and a last snapshot, listed in the .pvd collection, with contact forces as cells.
+  int snapshots = 0;
+  for (const auto& f : fs::directory_iterator(out / "vtk")) snapshots += f.path().extension() == ".vtp";
+  CHECK(snapshots == 2);
+  const std::string pvd = slurp(out / "snapshots.pvd");
+  CHECK_THAT(pvd, Contains("snapshot_000000000.vtp") && Contains("snapshot_000002000.vtp"));
+  const std::string vtp = slurp(out / "vtk" / "snapshot_000000000.vtp");
+  CHECK_THAT(vtp, Contains("<VTKFile type=\"PolyData\"") && Contains("Name=\"normal_force\"") &&
+                      Contains("Name=\"radius\""));
+}
+
+TEST_CASE("Same inputs give the same outputs, bit for bit", "[run]") {
+  const auto a = fresh_dir("repeat_a"), b = fresh_dir("repeat_b");
+  // A multi-contact PRE run (a bonded block toppling on a slope) and a disk impact.
+  for (const std::string c : {"cases/pre/block_mode.toml", "cases/impact/disk_disk.toml"}) {
+    CAPTURE(c);
+    const std::vector<std::string> sets = {"numerics.duration=0.005", "output.every=50",
+                                           "output.series=[\"t\", \"e0.x\", \"e0.y\", \"e0.phi\", \"energy.total\"]"};
+    run(c, a, sets);
+    run(c, b, sets);
+    const std::string sa = slurp(a / "series.csv"), sb = slurp(b / "series.csv");
+    CHECK(sa.size() > 200);
+    CHECK(sa == sb);
+    if (fs::exists(a / "vtk")) {  // block_mode.toml writes no snapshots
+      CHECK(slurp(a / "snapshots.pvd") == slurp(b / "snapshots.pvd"));
+      for (const auto& f : fs::directory_iterator(a / "vtk"))
+        CHECK(slurp(f.path()) == slurp(b / "vtk" / f.path().filename()));
+    }
+  }
+}
+
+TEST_CASE("A blow-up stops the run with a message and keeps what was written", "[run]") {
+  // K19 without damping is unstable at every Δt (references.md §1.5): the guard refuses it, the
+  // override lets it run, the energy criterion stops it.
+  const auto out = fresh_dir("blowup");
+  const std::vector<std::string> sets = {"numerics.integrator=K19", "numerics.dt=1e-3", "output.every=10",
+                                         "output.series=[\"t\", \"e0.y\"]"};
+  CHECK_THROWS_AS(run("cases/oscillator/bonded_face.toml", out, sets), dem::CaseError);
+  auto with = sets;
+  with.push_back("numerics.allow_unstable=true");
+  const auto r = run("cases/oscillator/bonded_face.toml", out, with);
+  CHECK(r.status == "blow-up");
+  CHECK_THAT(r.message, Contains("runaway energy") && Contains("stability limit"));
+  CHECK(r.steps < 12566);  // stopped before the end
+  nlohmann::json j;
+  std::ifstream(out / "summary.json") >> j;
+  CHECK(j["status"] == "blow-up");
+  // The series up to the blow-up is there: one row every 10 steps, plus the first and the last.
+  std::ifstream csv(out / "series.csv");
+  std::string line;
+  int rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  CHECK(rows >= static_cast<int>(r.steps / 10));
+}
