@@ -78,15 +78,7 @@ namespace {
 // never reached: each is an undamped oscillator of ω = √(N K_n/m).
 dem::Model bonded_model(double skin) {
   auto m = test::make_model({{"pre", 2650.0}, {"wall", 0.0}}, 1e-5);
-  dem::PairLaw law;
-  law.kind = dem::LawKind::face;
-  law.face.segments = 2;
-  law.face.tensile_strength = 1e15;
-  law.face.cohesion = 1e15;
-  law.face_kn = 1e6;
-  law.face_ks = 4e5;
-  law.damping_ratio = 0.0;
-  law.bond_at_start = true;
+  dem::PairLaw law = test::bonded_face_law(2, 1e6, 4e5, 0.0);  // h_n = 0.0
   test::set_law(m, 0, 0, law);
   test::set_law(m, 0, 1, law);
   const double r = 0.01;

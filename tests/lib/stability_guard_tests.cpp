@@ -100,15 +100,7 @@ namespace {
 dem::Model lattice(int columns, int rows, double dt, std::uint64_t seed) {
   auto m = test::make_model({{"mortar", 2000.0}}, dt);
   m.numerics.integrator = dem::Integrator::k18;
-  dem::PairLaw law;
-  law.kind = dem::LawKind::face;
-  law.face.segments = 2;
-  law.face.tensile_strength = 1e15;
-  law.face.cohesion = 1e15;
-  law.face_kn = 1e6;
-  law.face_ks = 4e5;
-  law.damping_ratio = 1.0;  // h_n
-  law.bond_at_start = true;
+  dem::PairLaw law = test::bonded_face_law(2, 1e6, 4e5, 1.0);  // h_n = 1.0
   test::set_law(m, 0, 0, law);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1e-3, 1e-3);  // small random velocities [m/s]

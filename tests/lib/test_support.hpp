@@ -52,6 +52,21 @@ inline dem::PairLaw linear_law(double kn, double ks, double mu, double eta_n, do
   return law;
 }
 
+/// A bonded face law: N segments at the centres, linearised, strengths never reached, bonded at the
+/// start; discrete springs kn, ks per segment [N/m], damping ratio h_n.
+inline dem::PairLaw bonded_face_law(int segments, double kn, double ks, double h_n) {
+  dem::PairLaw law;
+  law.kind = dem::LawKind::face;
+  law.face.segments = segments;
+  law.face.tensile_strength = 1e15;
+  law.face.cohesion = 1e15;
+  law.face_kn = kn;
+  law.face_ks = ks;
+  law.damping_ratio = h_n;
+  law.bond_at_start = true;
+  return law;
+}
+
 /// Writes `text` to a fresh file in a per-test temporary folder and returns its path.
 inline std::filesystem::path write_temp(const std::string& name, const std::string& text) {
   const auto dir = std::filesystem::temp_directory_path() / "dem2d_unit_lib";
