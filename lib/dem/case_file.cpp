@@ -346,31 +346,19 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     } else {
       const toml::array* ts = r.node("times") ? r.node("times")->as_array() : nullptr;
       const toml::array* vs = r.node("velocities") ? r.node("velocities")->as_array() : nullptr;
-      r.strings("times");  // marks used (validated below)
+      r.mark("times");
+      r.mark("velocities");
       if (!ts || !vs || ts->size() != vs->size() || ts->empty())
         r.fail_here("expected velocity = [vx, vy], or times = [...] and velocities = [[vx, vy], ...] of equal length");
       for (std::size_t k = 0; k < ts->size(); ++k) {
-        const auto* s = ts->get(k)->value_exact<std::string>() ? ts->get(k) : ts->get(k);
-        double t = 0.0;
-        try {
-          t = s->is_string() ? to_si(std::string_view(*s->value_exact<std::string>()), dims::time) : to_si(*s->value<double>(), dims::time);
-        } catch (const std::exception& e) {
-          r.fail("times", e.what());
-        }
+        const double t = r.quantity_of(*ts->get(k), "times", dims::time);
         const toml::array* v = vs->get(k)->as_array();
         if (!v || v->size() != 2) r.fail("velocities", "expected [vx, vy] pairs");
-        auto comp = [&](const toml::node* n) {
-          try {
-            return n->is_string() ? to_si(std::string_view(*n->value_exact<std::string>()), dims::velocity) : to_si(*n->value<double>(), dims::velocity);
-          } catch (const std::exception& e) {
-            r.fail("velocities", e.what());
-          }
-        };
         if (!h.t.empty() && t <= h.t.back()) r.fail("times", "must increase strictly");
         h.t.push_back(t);
-        h.v.push_back({comp(v->get(0)), comp(v->get(1))});
+        h.v.push_back({r.quantity_of(*v->get(0), "velocities", dims::velocity),
+                       r.quantity_of(*v->get(1), "velocities", dims::velocity)});
       }
-      r.mark("velocities");
     }
     rd.drive_index[name] = static_cast<std::int32_t>(m.drives.size());
     m.drives.push_back(h);

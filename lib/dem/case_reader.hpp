@@ -46,6 +46,8 @@ class TableReader {
   std::vector<std::string> strings(const std::string& key) const;
   const toml::table* table(const std::string& key) const;
   void mark(const std::string& key) const { used_.insert(key); }  // read by hand
+  /// A value inside an array of `key` (number in SI, or string with a unit), errors named by `key`.
+  double quantity_of(const toml::node& n, const std::string& key, Dimension dim) const { return to_quantity(n, key, dim); }
 
   /// Throws for any key that was not read.
   void finish() const;

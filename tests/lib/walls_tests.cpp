@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "dem/case_file.hpp"
 #include "dem/simulation.hpp"
 #include "test_support.hpp"
 
@@ -93,4 +94,19 @@ TEST_CASE("A driven element follows its drive and does not rotate", "[walls]") {
   CHECK_THAT(e.x[i], WithinAbs(0.1 * 0.01, 1e-12));  // 1000 steps of 1e-5 s
   CHECK_THAT(e.y[i], WithinAbs(0.5 - 0.05 * 0.01, 1e-12));
   CHECK(e.phi[i] == 0.0);
+}
+
+TEST_CASE("A velocity table in a case file drives a wall; a wrong entry is a located error", "[walls][case]") {
+  const auto path = std::string(DEM2D_SOURCE_DIR) + "/tests/lib/cases/drive_table.toml";
+  dem::Case c = dem::read_case(path);
+  dem::Simulation sim(c.model);
+  while (sim.time() < 0.02 - 1e-12) sim.step();
+  // Displacement: the ramp's 0.005 m plus 10 ms at 1 m/s.
+  CHECK_THAT(sim.model().walls[0].a.x, WithinAbs(-1.0 + 0.015, 1e-9));
+  try {
+    dem::read_case(path, {"drive.0.times=[0.0, true]"});
+    FAIL("a boolean time was accepted");
+  } catch (const dem::CaseError& e) {
+    CHECK_THAT(e.what(), Catch::Matchers::Contains("drive.0.times") && Catch::Matchers::Contains("expected time"));
+  }
 }
