@@ -173,8 +173,8 @@ void Simulation::rebuild() {
   const Elements& e = m_.elements;
   search_.build(e, skin_, candidates_);
   // Fresh slots for every candidate, routed by the pair's law.
-  static thread_local std::vector<LinearSlot> lin;
-  static thread_local std::vector<FaceSlot> face;
+  std::vector<LinearSlot>& lin = linear_fresh_;  // fresh slots for the candidates, routed by law
+  std::vector<FaceSlot>& face = face_fresh_;
   lin.clear();
   face.clear();
   for (const CandidatePair& p : candidates_) {

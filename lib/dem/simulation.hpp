@@ -68,6 +68,8 @@ class Simulation {
   std::vector<CandidatePair> candidates_;
   std::vector<LinearSlot> linear_pairs_, linear_walls_, linear_scratch_;
   std::vector<FaceSlot> face_pairs_, face_walls_, face_scratch_;
+  std::vector<LinearSlot> linear_fresh_;  // rebuild scratch, kept to reuse its capacity
+  std::vector<FaceSlot> face_fresh_;
   std::vector<double> x_ref_, y_ref_;  // positions at the last rebuild
   std::vector<Vec2> wall_ref_;
   double skin_ = 0.0;
