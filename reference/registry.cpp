@@ -10,6 +10,7 @@
 #include "ref/oscillator.hpp"
 #include "ref/require.hpp"
 #include "ref/resting_overlap.hpp"
+#include "ref/spring_layer.hpp"
 #include "ref/stability.hpp"
 
 namespace ref {
@@ -100,6 +101,12 @@ const std::vector<Entry>& table() {
         {argument::velocity0, argument::gravity, argument::time},
         "m/s"},
        [](const Args& a) { return free_fall_velocity(a("v0"), a("g"), a("t")); }},
+      {{"face.bending_moment",
+        "moment of a uniform normal spring layer on a face of half-length a turned by theta: k a^2 theta / 3",
+        {{"k", "N/m", "total normal stiffness of the face"}, {"a", "m", "half-length of the face"},
+         {"theta", "rad", "small rotation about the face centre"}},
+        "N m"},
+       [](const Args& a) { return spring_layer_moment(a("k"), a("a"), a("theta")); }},
       {{"rest.overlap",
         "equilibrium overlap m g / K on a linear spring (refs §1.6, §1.7)",
         {argument::mass, argument::gravity, argument::stiffness},
