@@ -49,6 +49,7 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"oscillator.velocity", {"m", "K", "eta", "x0", "v0", "t"}},
       {"free_fall.position", {"x0", "v0", "g", "t"}},
       {"free_fall.velocity", {"v0", "g", "t"}},
+      {"face.bending_moment", {"k", "a", "theta"}},
       {"rest.overlap", {"m", "g", "K"}},
       {"stability.K18_limit_W", {"zeta"}},
       {"stability.K19_limit_W", {"zeta"}},
