@@ -28,6 +28,18 @@ long wall_ref(const std::string& s, const Model& m) {
 
 }  // namespace
 
+double mean_increment(const Simulation& s) {
+  const Elements& e = s.model().elements;
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < e.size(); ++i)
+    if (e.active[i] && e.motion[i] == Motion::free) {
+      sum += std::abs(e.dx[i]) + std::abs(e.dy[i]);
+      n += 2;
+    }
+  return n ? sum / static_cast<double>(n) : 0.0;
+}
+
 QuantityFn compile_quantity(const std::string& name, const Model& m) {
   const auto p = split(name, '.');
   auto bad = [&](const std::string& why) {
@@ -40,18 +52,7 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
   if (name == "energy.potential") return [](const Simulation& s) { return s.energies().potential; };
   if (name == "energy.elastic") return [](const Simulation& s) { return s.energies().elastic; };
   if (name == "energy.total") return [](const Simulation& s) { return s.energies().total(); };
-  if (name == "mean_increment")
-    return [](const Simulation& s) {
-      const Elements& e = s.model().elements;
-      double sum = 0.0;
-      std::size_t n = 0;
-      for (std::size_t i = 0; i < e.size(); ++i)
-        if (e.active[i] && e.motion[i] == Motion::free) {
-          sum += std::abs(e.dx[i]) + std::abs(e.dy[i]);
-          n += 2;
-        }
-      return n ? sum / static_cast<double>(n) : 0.0;
-    };
+  if (name == "mean_increment") return mean_increment;
   long i = -1;
   try {
     i = p.empty() ? -1 : element_ref(p[0], m);

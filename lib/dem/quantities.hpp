@@ -18,6 +18,9 @@ namespace dem {
 
 using QuantityFn = std::function<double(const Simulation&)>;
 
+/// Mean of |Δx| and |Δy| per step over the active free elements (Kiyama's static criterion) [m].
+double mean_increment(const Simulation& s);
+
 /// Compiles a quantity name against a model; throws std::invalid_argument naming what is wrong.
 QuantityFn compile_quantity(const std::string& name, const Model& m);
 

@@ -210,18 +210,10 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
                                   limit, m.numerics.dt);
         break;
       }
-      if (c.stop.settled_increment && sim.time() >= c.stop.settle_min_time) {
-        double sum = 0.0;
-        std::size_t n = 0;
-        for (std::size_t i = 0; i < m.elements.size(); ++i)
-          if (m.elements.active[i] && m.elements.motion[i] == Motion::free) {
-            sum += std::abs(m.elements.dx[i]) + std::abs(m.elements.dy[i]);
-            n += 2;
-          }
-        if (n && sum / static_cast<double>(n) < *c.stop.settled_increment) {
-          res.status = "settled";
-          break;
-        }
+      if (c.stop.settled_increment && sim.time() >= c.stop.settle_min_time &&
+          mean_increment(sim) < *c.stop.settled_increment) {
+        res.status = "settled";
+        break;
       }
       if (show) {
         const auto now = std::chrono::steady_clock::now();

@@ -115,3 +115,13 @@ TEST_CASE("A blow-up stops the run with a message and keeps what was written", "
   while (std::getline(csv, line)) ++rows;
   CHECK(rows >= static_cast<int>(r.steps / 10));
 }
+
+TEST_CASE("The static criterion stops a settled run early", "[run]") {
+  const auto out = fresh_dir("settle");
+  const auto r = run("tests/lib/cases/settle.toml", out);
+  CHECK(r.status == "settled");
+  // ζ = 0.7 at ω₀ ≈ 5.6e3 rad/s: the motion decays as e^{−ζω₀t}, far below 1e-15 m/step within 0.1 s
+  // of the 1 s asked for, and not before the 1 ms minimum.
+  CHECK(r.steps > 100);
+  CHECK(r.steps < 10000);
+}
