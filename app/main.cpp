@@ -15,9 +15,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "dem/case_file.hpp"
-#include "dem/run.hpp"
-#include "dem/simulation.hpp"
+#include "dem/cases/case_file.hpp"
+#include "dem/run/run.hpp"
+#include "dem/core/simulation.hpp"
 #include "engine/study.hpp"
 #include "report.hpp"
 

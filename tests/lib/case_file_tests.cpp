@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "dem/case_file.hpp"
+#include "dem/cases/case_file.hpp"
 #include "test_support.hpp"
 
 using Catch::Matchers::Contains;

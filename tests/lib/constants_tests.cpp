@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "dem/constants.hpp"
-#include "dem/stability.hpp"
+#include "dem/contact/constants.hpp"
+#include "dem/core/stability.hpp"
 
 using Catch::Matchers::WithinRel;
 

@@ -13,8 +13,8 @@
 #include <numbers>
 #include <vector>
 
-#include "dem/face_contact.hpp"
-#include "dem/vec2.hpp"
+#include "dem/contact/face_contact.hpp"
+#include "dem/core/vec2.hpp"
 
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;

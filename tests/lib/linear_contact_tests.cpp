@@ -4,8 +4,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "dem/linear_contact.hpp"
-#include "dem/simulation.hpp"
+#include "dem/contact/linear_contact.hpp"
+#include "dem/core/simulation.hpp"
 #include "test_support.hpp"
 
 using Catch::Matchers::WithinAbs;

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "dem/neighbour_search.hpp"
+#include "dem/core/neighbour_search.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <tuple>
 #include <vector>
 
-#include "dem/simulation.hpp"
+#include "dem/core/simulation.hpp"
 #include "test_support.hpp"
 
 using Catch::Matchers::WithinAbs;

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "dem/run.hpp"
+#include "dem/run/run.hpp"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "dem/simulation.hpp"
-#include "dem/stability.hpp"
+#include "dem/core/simulation.hpp"
+#include "dem/core/stability.hpp"
 #include "test_support.hpp"
 
 using Catch::Matchers::WithinRel;

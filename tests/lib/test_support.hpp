@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "dem/model.hpp"
+#include "dem/core/model.hpp"
 
 namespace test {
 

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <string>
 
-#include "dem/units.hpp"
+#include "dem/cases/units.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinRel;

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "dem/case_file.hpp"
-#include "dem/simulation.hpp"
+#include "dem/cases/case_file.hpp"
+#include "dem/core/simulation.hpp"
 #include "test_support.hpp"
 
 using Catch::Matchers::WithinAbs;

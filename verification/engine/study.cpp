@@ -14,10 +14,10 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include "dem/case_file.hpp"
-#include "dem/run.hpp"
-#include "dem/text.hpp"
-#include "dem/units.hpp"
+#include "dem/cases/case_file.hpp"
+#include "dem/run/run.hpp"
+#include "dem/cases/text.hpp"
+#include "dem/cases/units.hpp"
 #include "engine/convergence.hpp"
 #include "ref/registry.hpp"
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "dem/elements.hpp"
+#include "dem/core/elements.hpp"
 
 namespace dem {
 

@@ -5,12 +5,12 @@
 #include <string>
 #include <vector>
 
-#include "dem/elements.hpp"
-#include "dem/face_contact.hpp"
-#include "dem/linear_contact.hpp"
-#include "dem/vec2.hpp"
-#include "dem/velocity_history.hpp"
-#include "dem/wall.hpp"
+#include "dem/core/elements.hpp"
+#include "dem/contact/face_contact.hpp"
+#include "dem/contact/linear_contact.hpp"
+#include "dem/core/vec2.hpp"
+#include "dem/core/velocity_history.hpp"
+#include "dem/core/wall.hpp"
 
 namespace dem {
 

@@ -1,4 +1,4 @@
-#include "dem/model.hpp"
+#include "dem/core/model.hpp"
 
 #include <numbers>
 

@@ -1,4 +1,4 @@
-#include "dem/neighbour_search.hpp"
+#include "dem/core/neighbour_search.hpp"
 
 #include <algorithm>
 #include <cmath>

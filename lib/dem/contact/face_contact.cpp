@@ -1,4 +1,4 @@
-#include "dem/face_contact.hpp"
+#include "dem/contact/face_contact.hpp"
 
 #include <cmath>
 

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dem/model.hpp"
+#include "dem/core/model.hpp"
 
 namespace dem {
 

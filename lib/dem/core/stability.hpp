@@ -1,7 +1,7 @@
 #pragma once
 // Stability limits of the two explicit schemes (references.md §1.5) and the time-step guard for a
 // whole assembly (model.md §1 "Time step", §2 (M26); references.md §4.6).
-#include "dem/model.hpp"
+#include "dem/core/model.hpp"
 
 namespace dem {
 

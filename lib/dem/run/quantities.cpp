@@ -1,6 +1,6 @@
-#include "dem/quantities.hpp"
+#include "dem/run/quantities.hpp"
 
-#include "dem/text.hpp"
+#include "dem/cases/text.hpp"
 
 #include <cmath>
 #include <stdexcept>

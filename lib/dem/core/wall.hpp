@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "dem/vec2.hpp"
+#include "dem/core/vec2.hpp"
 
 namespace dem {
 

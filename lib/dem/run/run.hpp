@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dem/case_file.hpp"
+#include "dem/cases/case_file.hpp"
 
 namespace dem {
 

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "dem/simulation.hpp"
+#include "dem/core/simulation.hpp"
 
 namespace dem {
 

@@ -1,4 +1,4 @@
-#include "dem/case_reader.hpp"
+#include "dem/cases/case_reader.hpp"
 
 #include <cmath>
 #include <fmt/format.h>

@@ -12,7 +12,7 @@
 #include <functional>
 #include <string>
 
-#include "dem/simulation.hpp"
+#include "dem/core/simulation.hpp"
 
 namespace dem {
 

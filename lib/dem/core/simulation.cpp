@@ -1,4 +1,4 @@
-#include "dem/simulation.hpp"
+#include "dem/core/simulation.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "dem/stability.hpp"
+#include "dem/core/stability.hpp"
 
 namespace dem {
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "dem/contact_slots.hpp"
-#include "dem/model.hpp"
-#include "dem/neighbour_search.hpp"
+#include "dem/contact/contact_slots.hpp"
+#include "dem/core/model.hpp"
+#include "dem/core/neighbour_search.hpp"
 
 namespace dem {
 

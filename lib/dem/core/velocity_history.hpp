@@ -3,7 +3,7 @@
 // given points, constant before the first and after the last.
 #include <vector>
 
-#include "dem/vec2.hpp"
+#include "dem/core/vec2.hpp"
 
 namespace dem {
 

@@ -1,4 +1,4 @@
-#include "dem/vtk_writer.hpp"
+#include "dem/run/vtk_writer.hpp"
 
 #include <fstream>
 

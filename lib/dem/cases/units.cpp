@@ -1,4 +1,4 @@
-#include "dem/units.hpp"
+#include "dem/cases/units.hpp"
 
 #include <array>
 #include <charconv>

@@ -9,9 +9,9 @@
 
 #include <toml++/toml.h>
 
-#include "dem/case_file.hpp"
-#include "dem/units.hpp"
-#include "dem/vec2.hpp"
+#include "dem/cases/case_file.hpp"
+#include "dem/cases/units.hpp"
+#include "dem/core/vec2.hpp"
 
 namespace dem {
 

@@ -4,8 +4,8 @@
 // rebuild merges the old, sorted slot list into the new, sorted candidate list by the key (i, j).
 #include <cstdint>
 
-#include "dem/face_contact.hpp"
-#include "dem/linear_contact.hpp"
+#include "dem/contact/face_contact.hpp"
+#include "dem/contact/linear_contact.hpp"
 
 namespace dem {
 

@@ -1,4 +1,4 @@
-#include "dem/constants.hpp"
+#include "dem/contact/constants.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,4 @@
-#include "dem/stability.hpp"
+#include "dem/core/stability.hpp"
 
 #include <cmath>
 #include <limits>

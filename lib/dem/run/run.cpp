@@ -1,4 +1,4 @@
-#include "dem/run.hpp"
+#include "dem/run/run.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -10,10 +10,10 @@
 #include <fmt/format.h>
 #include <fmt/os.h>
 
-#include "dem/quantities.hpp"
-#include "dem/text.hpp"
-#include "dem/simulation.hpp"
-#include "dem/vtk_writer.hpp"
+#include "dem/run/quantities.hpp"
+#include "dem/cases/text.hpp"
+#include "dem/core/simulation.hpp"
+#include "dem/run/vtk_writer.hpp"
 
 #include "dem2d_version.hpp"  // generated at build time: DEM2D_VERSION
 #ifndef DEM2D_BUILD_TYPE

@@ -1,4 +1,4 @@
-#include "dem/case_file.hpp"
+#include "dem/cases/case_file.hpp"
 
 #include <cmath>
 #include <map>
@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
-#include "dem/case_reader.hpp"
-#include "dem/text.hpp"
-#include "dem/simulation.hpp"
+#include "dem/cases/case_reader.hpp"
+#include "dem/cases/text.hpp"
+#include "dem/core/simulation.hpp"
 
 namespace dem {
 
