@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
   study->add_option("--out", out_dir, "Output folder (default build/studies/<name>)");
   study->add_option("-j,--jobs", jobs, "Runs in parallel")->check(CLI::PositiveNumber);
 
-  std::string studies_dir = "build/studies", report_dir = "build/reports";
+  std::string studies_dir = "build/studies", report_dir = "build/report";
   auto* rep = app.add_subcommand("report", "Write the verification report (index.html, index.md) from study results");
   rep->add_option("--studies", studies_dir, "Folder with one sub-folder per study holding result.json");
   rep->add_option("--out", report_dir, "Report folder");
