@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the testbed needs (only those missing). Safe to run repeatedly.
-# Package list and CMake targets: ../shared/spec/toolchain.md.
+# Package list and CMake targets: docs/toolchain.md.
 set -euo pipefail
 pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtomlplusplus-dev
       libcli11-dev nlohmann-json3-dev libfmt-dev gnuplot-nox)
