@@ -1,0 +1,89 @@
+// Elastic beam theory and the square PRE lattice's beam (refs §4.1–§4.4).
+#include <catch2/catch.hpp>
+
+#include <stdexcept>
+
+#include "ref/beam.hpp"
+
+using Catch::Matchers::WithinRel;
+using ref::SegmentPositions;
+
+namespace {
+// The M-D prism: 40 × 40 mm section, span 100 mm (refs §4.1).
+const ref::BeamSection prism{0.040, 0.040, 0.100};
+constexpr double E = 4000e6, nu = 1.0 / 6.0;  // Pa
+constexpr double mm = 1e-3;
+}  // namespace
+
+TEST_CASE("Beam: section and peak load of the mortar prism (refs 4.1)", "[beam]") {
+  CHECK_THAT(ref::second_moment(prism), WithinRel(213333.3333e-12, 1e-9));
+  CHECK_THAT(ref::flexural_peak_load(prism, 5.6e6), WithinRel(2389.3333, 1e-7));
+}
+
+TEST_CASE("Beam: Euler-Bernoulli and Timoshenko stiffness of the prism (refs 4.1)", "[beam]") {
+  const double G = E / (2.0 * (1.0 + nu));
+  CHECK_THAT(G, WithinRel(1714.286e6, 1e-6));
+  CHECK_THAT(ref::euler_bernoulli_stiffness(prism, E) * mm, WithinRel(40960.0, 1e-9));
+  // δ(P_max) = 0.058333 mm (EB) and 0.084467 mm (Timoshenko, κ = 5/6).
+  const double P = ref::flexural_peak_load(prism, 5.6e6);
+  CHECK_THAT(P / ref::euler_bernoulli_stiffness(prism, E) / mm, WithinRel(0.058333, 1e-5));
+  const double kT = ref::timoshenko_stiffness(prism, E, G, ref::shear_coefficient_parabolic());
+  CHECK_THAT(kT * mm, WithinRel(28287.0, 2e-5));
+  CHECK_THAT(P / kT / mm, WithinRel(0.084467, 1e-5));
+  CHECK_THAT(ref::shear_coefficient_cowper(nu), WithinRel(0.843373, 1e-6));
+  CHECK_THAT(ref::timoshenko_stiffness(prism, E, G, ref::shear_coefficient_cowper(nu)) * mm,
+             WithinRel(28392.0, 3e-5));
+}
+
+TEST_CASE("Beam: the square lattice is orthotropic with E = kn, G = ks/2, nu = 0 (refs 4.3)", "[beam]") {
+  const auto m = ref::square_lattice_moduli(4300e6, 1720e6);
+  CHECK(m.young == 4300e6);
+  CHECK(m.shear_modulus == 860e6);
+  CHECK(m.poisson == 0.0);
+  // Beam stiffness of the lattice: EB 44 032 N/mm; Timoshenko 22 465 N/mm (paper constants) and
+  // 22 391 N/mm (M25's exact constants 4285.7, 1714.3 → G_eff = 857.1).
+  CHECK_THAT(ref::euler_bernoulli_stiffness(prism, m.young) * mm, WithinRel(44032.0, 1e-5));
+  CHECK_THAT(ref::timoshenko_stiffness(prism, m.young, m.shear_modulus, 5.0 / 6.0) * mm, WithinRel(22465.0, 3e-5));
+  const auto exact = ref::square_lattice_moduli(E * 15.0 / 14.0, 0.4 * E * 15.0 / 14.0);
+  CHECK_THAT(ref::timoshenko_stiffness(prism, exact.young, exact.shear_modulus, 5.0 / 6.0) * mm,
+             WithinRel(22391.0, 3e-5));
+  // The continuum target is ~21 % stiffer (28 287 N/mm), almost all from G_eff = G/2.
+  const double G = E / (2.0 * (1.0 + nu));
+  const double ratio = ref::timoshenko_stiffness(prism, m.young, m.shear_modulus, 5.0 / 6.0) /
+                       ref::timoshenko_stiffness(prism, E, G, 5.0 / 6.0);
+  CHECK_THAT(ratio, WithinRel(0.794, 2e-3));
+}
+
+TEST_CASE("Beam: discrete faces change the bending moment of inertia (refs 4.3)", "[beam]") {
+  CHECK(ref::lattice_bending_factor(1, 1, SegmentPositions::centres) == 0.0);  // N = 1, one row: no face moment
+  CHECK_THAT(ref::lattice_bending_factor(6, 5, SegmentPositions::centres), WithinRel(1.0 - 1.0 / 900.0, 1e-14));
+  CHECK_THAT(ref::lattice_bending_factor(4, 2, SegmentPositions::face_ends), WithinRel(1.125, 1e-14));
+  // A finer lattice approaches the continuum from below (centres) and from above (ends).
+  CHECK(ref::lattice_bending_factor(10, 1, SegmentPositions::centres) > ref::lattice_bending_factor(6, 1, SegmentPositions::centres));
+  CHECK(ref::lattice_bending_factor(10, 2, SegmentPositions::face_ends) < ref::lattice_bending_factor(6, 2, SegmentPositions::face_ends));
+}
+
+TEST_CASE("Beam: first-crack ratio table of refs 4.4", "[beam]") {
+  struct Row { int rows; double by_n[5]; double ends; };
+  const Row table[] = {{2, {1.5000, 1.2500, 1.1667, 1.1250, 1.1000}, 1.5000},
+                       {3, {1.3333, 1.1667, 1.1111, 1.0833, 1.0667}, 1.2222},
+                       {4, {1.2500, 1.1250, 1.0833, 1.0625, 1.0500}, 1.1250},
+                       {6, {1.1667, 1.0833, 1.0556, 1.0417, 1.0333}, 1.0556},
+                       {10, {1.1000, 1.0500, 1.0333, 1.0250, 1.0200}, 1.0200}};
+  for (const auto& row : table) {
+    CAPTURE(row.rows);
+    for (int N = 1; N <= 5; ++N) {
+      CAPTURE(N);
+      CHECK_THAT(ref::lattice_first_crack_ratio(row.rows, N, SegmentPositions::centres), WithinRel(row.by_n[N - 1], 5e-5));
+    }
+    CHECK_THAT(ref::lattice_first_crack_ratio(row.rows, 2, SegmentPositions::face_ends), WithinRel(row.ends, 5e-5));
+  }
+}
+
+TEST_CASE("Beam: invalid inputs are refused", "[beam]") {
+  CHECK_THROWS_AS(ref::second_moment({0.0, 0.04, 0.1}), std::invalid_argument);
+  CHECK_THROWS_AS(ref::euler_bernoulli_stiffness(prism, -1.0), std::invalid_argument);
+  CHECK_THROWS_AS(ref::lattice_first_crack_ratio(0, 1, SegmentPositions::centres), std::invalid_argument);
+  CHECK_THROWS_AS(ref::lattice_bending_factor(4, 3, SegmentPositions::face_ends), std::invalid_argument);
+  CHECK_THROWS_AS(ref::shear_coefficient_cowper(0.5), std::invalid_argument);
+}
