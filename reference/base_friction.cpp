@@ -270,8 +270,8 @@ double base_friction_moment(double lambda, double psi, double width, double heig
   detail::require_finite(where, "lambda", lambda);
   detail::require_finite(where, "psi", psi);
   require_block(where, width, height);
-  if (!(tolerance >= 1e-13 && tolerance <= 1e-2))
-    detail::fail(where, "tolerance must lie in [1e-13, 1e-2]", tolerance);
+  if (!(tolerance >= 1e-12 && tolerance <= 1e-2))
+    detail::fail(where, "tolerance must lie in [1e-12, 1e-2]", tolerance);
   const double length = std::max(width, height);
   return length * length * length *
          moment_quadrature_scaled(scale(lambda, psi, width, height), tolerance);  // (M25)
@@ -289,8 +289,8 @@ double base_friction_moment_closed_form(double lambda, double psi, double width,
 double base_friction_lambda(double psi, double width, double height, MomentEvaluation evaluation) {
   constexpr const char* where = "ref::base_friction_lambda";
   detail::require_finite(where, "psi", psi);
-  if (!(psi >= 0.0 && psi <= std::numbers::pi))
-    detail::fail(where, "psi must lie in [0, pi] rad", psi);
+  if (!(psi >= 0.0 && psi <= 2.0 * std::numbers::pi))
+    detail::fail(where, "psi must lie in [0, 2 pi] rad", psi);
   require_block(where, width, height);
   const Scaled s = scale(0.0, psi, width, height);
   // F(0) = W H T_cm (refs §3.2): the block stays on its base when T_cm >= 0.

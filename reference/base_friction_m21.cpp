@@ -78,8 +78,8 @@ double m21_moment(double lambda, double psi, double width, double height, int n_
 double m21_lambda(double psi, double width, double height, int n_w, int n_h) {
   constexpr const char* where = "ref::m21_lambda";
   detail::require_finite(where, "psi", psi);
-  if (!(psi >= 0.0 && psi <= std::numbers::pi))
-    detail::fail(where, "psi must lie in [0, pi] rad", psi);
+  if (!(psi >= 0.0 && psi <= 2.0 * std::numbers::pi))
+    detail::fail(where, "psi must lie in [0, 2 pi] rad", psi);
   const Lattice lattice = require_lattice(where, width, height, n_w, n_h);
   const double c = std::cos(psi), s = std::sin(psi);
   // F21(0) = W H T_cm: no toppling when T_cm >= 0 (same condition as M25).

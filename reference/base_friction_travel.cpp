@@ -65,8 +65,9 @@ std::vector<double> theta_at_travels(const std::vector<double>& travels, double 
   namespace odeint = boost::numeric::odeint;
   using State = std::array<double, 1>;
   const auto system = [&](const State& x, State& dxdt, double /*travel*/) {
-    // Stages of the last step may overshoot pi/2; θ beyond it is never reported.
-    const double r = rate(alpha + std::clamp(x[0], 0.0, quarter_turn));
+    // Stages of the last step may overshoot pi/2 (θ beyond it is never reported); the rate is
+    // continued smoothly there, since a kink at pi/2 would spoil that step's dense output.
+    const double r = rate(alpha + std::clamp(x[0], 0.0, std::numbers::pi));
     if (!(std::isfinite(r) && r >= 0.0))
       throw std::invalid_argument(std::string(where) + ": rate must be finite and >= 0");
     dxdt[0] = r;

@@ -20,7 +20,7 @@
 namespace ref {
 
 // Default tolerance of the nested quadrature of F (refs §3.2): epsrel = tolerance and
-// epsabs = tolerance · W·H·max(W, H).
+// epsabs = tolerance · W·H·max(W, H); tolerance in [1e-12, 1e-2].
 inline constexpr double base_friction_quadrature_tolerance = 1e-11;
 
 // F(λ; psi, W, H) of (M25) by nested adaptive GSL quadrature (GAUSS61 inner over w, outer over h;
@@ -45,7 +45,8 @@ enum class MomentEvaluation { quadrature, closed_form };
 // λ(psi; W, H) (1/m, <= 0), the root of (M25). 0 when F(0) >= 0, i.e. tan psi <= W/H (the block
 // rests on its base; the positive root would be a rotation into the slope). Otherwise the unique
 // negative root (F is non-increasing in λ, refs §3.2), bracketed by λ_lo = -2^k/H (k = 0, 1, ...)
-// and solved with GSL Brent to a relative 1e-12. psi in [0, pi] rad. Accuracy: ~1e-11 relative
+// and solved with GSL Brent to a relative 1e-12. psi in [0, 2 pi] rad (beyond pi the block is past
+// upside down; allowed so that an integrator may step a little past θ = 90°). Accuracy: ~1e-11 relative
 // (limited by F). Cost: ~0.1-1 ms with quadrature, up to ~20 ms while ρ0 lies inside the block
 // (90° < psi < 118° for W/H = 1/3); ~10 µs closed form.
 double base_friction_lambda(double psi, double width, double height,

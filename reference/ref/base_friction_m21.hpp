@@ -22,7 +22,7 @@ double m21_moment(double lambda, double psi, double width, double height, int n_
 
 // λ21(psi) (1/m, <= 0): 0 when F21(0) = W H T_cm >= 0 (no toppling, the same condition as M25),
 // else the root in [λ_lo, 0), λ_lo = -2^k/H doubled until F21(λ_lo) > 0 (F21(-∞) > 0), by GSL Brent
-// to a relative 1e-13. psi in [0, pi]. Accuracy: ~1e-13 relative.
+// to a relative 1e-13. psi in [0, 2 pi]. Accuracy: ~1e-13 relative.
 double m21_lambda(double psi, double width, double height, int n_w, int n_h);
 
 // dθ/dδ_B = -λ21 (rad/m).
