@@ -235,6 +235,16 @@ struct GaussLegendre {
   }
 };
 
+// The integrand straight from the traction, in vectors, for the Gauss-Legendre branch (so that it
+// shares no code with the quadrature's): in the (w, h) frame of the paper's hand ĝ = (sin psi,
+// cos psi) (then (ρ x ĝ)_z = T), the velocity relative to the plate per v_B is u = λ ẑ x ρ - ĝ, and
+// the moment density is -(ρ x u)_z/|u| = (T - λR²)/sqrt(1 - 2Tλ + λ²R²). |u| >= 1 - |λ|R > 0.7 here.
+double integrand_from_velocity(const Scaled& s, double w, double h) {
+  const double u_w = -s.lambda * h - s.sin_psi;  // λ ẑ x ρ = λ (-h, w)
+  const double u_h = s.lambda * w - s.cos_psi;
+  return -(w * u_h - h * u_w) / std::hypot(u_w, u_h);
+}
+
 double moment_closed_form_scaled(const Scaled& s) {
   if (std::abs(s.lambda) < far_centre_below) {  // Gauss-Legendre: the closed form would cancel
     static const GaussLegendre rule;
@@ -243,7 +253,7 @@ double moment_closed_form_scaled(const Scaled& s) {
       double row = 0.0;
       for (std::size_t i = 0; i < GaussLegendre::order; ++i)
         row += rule.weight[i] *
-               integrand_as_written(s, rule.node[i] * s.width, rule.node[j] * s.height);
+               integrand_from_velocity(s, rule.node[i] * s.width, rule.node[j] * s.height);
       sum += rule.weight[j] * row;
     }
     return sum * s.width * s.height;
