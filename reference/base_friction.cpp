@@ -1,8 +1,8 @@
 // Bray & Goodman's base-friction rotation integral (M25) two ways, its root λ(psi), and the sliding
 // relation M22 (refs §3.1, §3.2, §3.5). Geometry and signs: ref/base_friction.hpp.
 //
-// (M25), refs §3.1. Paper's hand: T = (ρ x ĝ)_z = w cos psi - h sin psi, λ = θ'/v_B. A point ρ moves
-// with V = Ω ẑ x ρ, the plate with V_B = v_B ĝ; the traction is -μ_B p (V - V_B)/|V - V_B|. Then
+// (M25), refs §3.1. Paper's hand: T = (ρ x ĝ)_z = w cos psi - h sin psi, λ = θ'/v_B. A point ρ
+// moves with V = Ω ẑ x ρ, the plate with V_B = v_B ĝ; the traction is -μ_B p (V - V_B)/|V - V_B|:
 //   (ρ x (V - V_B))_z = Ω R² - v_B T,   |V - V_B|² = v_B² (1 - 2Tλ + λ²R²),
 // and the moment about P, -μ_B p |v_B|/v_B ∫ (λR² - T)/sqrt(1 - 2Tλ + λ²R²) dA, vanishes:
 //   F(λ) = ∫∫ (T - λR²)/sqrt(1 - 2Tλ + λ²R²) dw dh = 0.                                      (M25)
@@ -19,8 +19,8 @@
 // Second evaluation (refs §3.2). With d = ρ - ρ0: T = ρ·ρ0 λ, so T - λR² = -λ(|d|² + ρ0·d), and
 // 1 - 2Tλ + λ²R² = λ²|d|²; hence the integrand is -sgn(λ) (|d| + ρ0·d/|d|) and
 //   F = -sgn(λ) [ ∬ |d| dA + ρ0 · ∬ d/|d| dA ]
-// over x = w - w0 ∈ [-w0, W - w0], y = h - h0 ∈ [-h0, H - h0]. Antiderivatives (∂²/∂x∂y of each gives
-// its integrand; every x² asinh(y/|x|) term -> 0 as x -> 0):
+// over x = w - w0 ∈ [-w0, W - w0], y = h - h0 ∈ [-h0, H - h0]. Antiderivatives (∂²/∂x∂y of each
+// gives its integrand; every x² asinh(y/|x|) term -> 0 as x -> 0):
 //   ∬ r:    G(x, y)  = [2xy r + x³ asinh(y/|x|) + y³ asinh(x/|y|)] / 6,
 //   ∬ x/r:  Hx(x, y) = [y r + x² asinh(y/|x|)] / 2,      ∬ y/r:  Hy(x, y) = Hx(y, x).
 // Corner values grow like |ρ0|³ = |λ|⁻³ while F stays O(L³) (L = max(W, H)): the sum loses about
@@ -89,19 +89,20 @@ double integrand(const Scaled& s, double w, double h) {
                                                : integrand_about_centre(s, w, h);
 }
 
-// ---- nested adaptive quadrature -------------------------------------------------------------------
+// ---- nested adaptive quadrature ------------------------------------------------------------
 //
 // Outer over h, inner over w (refs §3.2): epsabs = tol·W·H·L (m³; tol·(W/L)(H/L) in scaled units),
 // epsrel = tol; the inner integrals 10x tighter so that their errors do not disturb the outer rule.
 // Near ρ0 the integrand varies on the scale of the distance to ρ0. Along an inner line h = const
 // the direction term ρ0·d/|d| turns over a width |h - h0| at w0, a first-order effect (about
-// |ρ0||h - h0| log) that a Gauss-Kronrod rule whose outermost node misses it does not report. So the
-// inner integral gets break points graded towards w0: w0 and w0 ± σ·4^k (σ = |h - h0|, k = 0, 1,
-// ...) inside (0, W) (qagp); each sub-interval then lies at least a third of its length from the
-// feature. The inner integral is continuous in h with a slope singularity at h0, which qagp's
-// bisection towards the break point h0 resolves (a feature of width e next to it costs ~e²). This
-// is refs §3.2's "pass w0 (h0) as break points", made robust for ρ0 on or near the block's edge.
-// With ρ0 far away (|λ|L < far_centre_below) both levels are plain GAUSS61.
+// |ρ0||h - h0| log) that a Gauss-Kronrod rule whose outermost node misses it does not report. So
+// the inner integral gets break points graded towards w0: w0 and w0 ± σ·4^k (σ = |h - h0|,
+// k = 0, 1, ...) inside (0, W) (qagp); each sub-interval then lies at least a third of its length
+// from the feature. The inner integral is continuous in h with a slope singularity at h0, which
+// qagp's bisection towards the break point h0 resolves (a feature of width e next to it costs
+// ~e²). This is refs §3.2's "pass w0 (h0) as break points", made robust for ρ0 on or near the
+// block's edge (with w0 alone, qag stops with a roundoff error, e.g. for W = H, psi = 172.5°,
+// λH = -5). With ρ0 far away (|λ|L < far_centre_below) both levels are plain GAUSS61.
 
 constexpr std::size_t workspace_limit = 2000;
 
@@ -197,7 +198,7 @@ double moment_quadrature_scaled(const Scaled& s, double tolerance) {
   return result;
 }
 
-// ---- closed form ----------------------------------------------------------------------------------
+// ---- closed form ---------------------------------------------------------------------------
 
 // x² asinh(y/|x|), continued by 0 at x = 0 (it vanishes like x² log|x|).
 double x2_asinh(double x, double y) {
@@ -238,7 +239,8 @@ struct GaussLegendre {
 // The integrand straight from the traction, in vectors, for the Gauss-Legendre branch (so that it
 // shares no code with the quadrature's): in the (w, h) frame of the paper's hand ĝ = (sin psi,
 // cos psi) (then (ρ x ĝ)_z = T), the velocity relative to the plate per v_B is u = λ ẑ x ρ - ĝ, and
-// the moment density is -(ρ x u)_z/|u| = (T - λR²)/sqrt(1 - 2Tλ + λ²R²). |u| >= 1 - |λ|R > 0.7 here.
+// the moment density is -(ρ x u)_z/|u| = (T - λR²)/sqrt(1 - 2Tλ + λ²R²); here
+// |u| >= 1 - |λ|R > 0.7.
 double integrand_from_velocity(const Scaled& s, double w, double h) {
   const double u_w = -s.lambda * h - s.sin_psi;  // λ ẑ x ρ = λ (-h, w)
   const double u_h = s.lambda * w - s.cos_psi;
@@ -336,7 +338,8 @@ double base_friction_rate(double psi, double width, double height, MomentEvaluat
 // is the same everywhere and the traction is a uniform -μ_B p û. Quasi-static balance with the
 // slope's normal force N n̂ and friction -tan phi_w N t̂:
 //   normal:     N = μ_B p A cos alpha/|u|,
-//   tangential: -μ_B p A (k - sin alpha)/|u| = tan phi_w N  =>  k = sin alpha - tan phi_w cos alpha.
+//   tangential: -μ_B p A (k - sin alpha)/|u| = tan phi_w N,
+// so k = sin alpha - tan phi_w cos alpha.
 double slide_ratio(double alpha, double wall_friction_angle) {
   constexpr const char* where = "ref::slide_ratio";
   detail::require_finite(where, "alpha", alpha);

@@ -8,11 +8,11 @@
 // element's force (at c_e) plus its spin moment -(2/3) μ_B m_e g r (rΩ)/S_e is
 //   -μ_B m_e g v_B [λ(|c_e|² + (2/3) r²) - T_e] / S_e.
 // Summing over e (m_e ∝ s², so weights s² make F21 comparable with F of M25), the zero moment
-// is F21(λ) = 0 of the header. F21(0) = s² Σ T_e = W H T_cm because the centres average to the block
-// centre; F21(λ -> -∞) = s² Σ (|c|² + (2/3) r²)/sqrt(|c|² + r²) > 0. Unlike F of (M25), F21 need not
-// be monotone (∂/∂λ of a term has numerator T² - |c|² - (2/3) r² - λ T r²/3), so the root is taken
-// in the bracket [λ_lo, 0) found as for M25; the unit tests check that this bracket holds one sign
-// change only.
+// is F21(λ) = 0 of the header. F21(0) = s² Σ T_e = W H T_cm because the centres average to the
+// block centre; F21(λ -> -∞) = s² Σ (|c|² + (2/3) r²)/sqrt(|c|² + r²) > 0. Unlike F of (M25), F21
+// need not be monotone (∂/∂λ of a term has numerator T² - |c|² - (2/3) r² - λ T r²/3), so the root
+// is taken in the bracket [λ_lo, 0) found as for M25; the unit tests check that this bracket holds
+// one sign change only.
 #include "ref/base_friction_m21.hpp"
 
 #include <algorithm>
@@ -54,8 +54,8 @@ double moment_in_sides(double lambda_s, double cos_psi, double sin_psi, const La
     const double ch = j + 0.5;
     for (int i = 0; i < lattice.n_w; ++i) {
       const double cw = i + 0.5;
-      const double t = cw * cos_psi - ch * sin_psi;           // T_e
-      const double n = cw * sin_psi + ch * cos_psi;           // T_e² + n² = |c_e|²
+      const double t = cw * cos_psi - ch * sin_psi;  // T_e
+      const double n = cw * sin_psi + ch * cos_psi;  // T_e² + n² = |c_e|²
       const double a = 1.0 - t * lambda_s;
       const double s2 = a * a + lambda_s * lambda_s * (n * n + r2);  // 1 - 2Tλ + λ²(|c|² + r²)
       sum += (t - lambda_s * (cw * cw + ch * ch + (2.0 / 3.0) * r2)) / std::sqrt(s2);  // (M21)

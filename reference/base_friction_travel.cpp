@@ -72,8 +72,8 @@ std::vector<double> theta_at_travels(const std::vector<double>& travels, double 
       throw std::invalid_argument(std::string(where) + ": rate must be finite and >= 0");
     dxdt[0] = r;
   };
-  auto stepper = odeint::make_dense_output(ode_tolerance, ode_tolerance,
-                                           odeint::runge_kutta_dopri5<State>());
+  auto stepper =
+      odeint::make_dense_output(ode_tolerance, ode_tolerance, odeint::runge_kutta_dopri5<State>());
   stepper.initialize(State{0.0}, 0.0, 1e-3 / rate0);  // first step: ~1e-3 rad
 
   std::size_t next = 0;
@@ -119,8 +119,8 @@ double travel_at_theta(double theta, double alpha, const RotationRate& rate) {
                                GSL_INTEG_GAUSS21);
 }
 
-std::vector<double> theta_at_travels(const std::vector<double>& travels, double alpha,
-                                     double width, double height, MomentEvaluation evaluation) {
+std::vector<double> theta_at_travels(const std::vector<double>& travels, double alpha, double width,
+                                     double height, MomentEvaluation evaluation) {
   require_block("ref::theta_at_travels", width, height);
   return theta_at_travels(travels, alpha, [=](double psi) {
     return base_friction_rate(psi, width, height, evaluation);
@@ -135,17 +135,15 @@ double theta_at_travel(double travel, double alpha, double width, double height,
 double travel_at_theta(double theta, double alpha, double width, double height,
                        MomentEvaluation evaluation) {
   require_block("ref::travel_at_theta", width, height);
-  return travel_at_theta(theta, alpha, [=](double psi) {
-    return base_friction_rate(psi, width, height, evaluation);
-  });
+  return travel_at_theta(
+      theta, alpha, [=](double psi) { return base_friction_rate(psi, width, height, evaluation); });
 }
 
 double theta_at_travel_m21(double travel, double alpha, double width, double height, int n_w,
                            int n_h) {
   m21_moment(0.0, alpha, width, height, n_w, n_h);  // validates the block and the elements
-  return theta_at_travels(
-             std::vector<double>{travel}, alpha,
-             [=](double psi) { return m21_rate(psi, width, height, n_w, n_h); })
+  return theta_at_travels(std::vector<double>{travel}, alpha,
+                          [=](double psi) { return m21_rate(psi, width, height, n_w, n_h); })
       .front();
 }
 

@@ -1,15 +1,15 @@
 #pragma once
 // Base-friction model (refs §3): a rigid W x H block toppling about its down-slope base corner P on
 // a plate that slides under it with velocity V_B = v ĝ (v = |v_B|, ĝ the "virtual gravity"). Bray &
-// Goodman's (1981) rotation rate from the moment balance about P, written as Matsui's M25 (the first
-// of the paper's two equations (25)), and the sliding relation M22.
+// Goodman's (1981) rotation rate from the moment balance about P, written as Matsui's M25 (the
+// first of the paper's two equations (25)), and the sliding relation M22.
 //
 // Geometry (refs §3.1). Block coordinates from the pivot P: w along the base face (up-slope, 0..W),
 // h along the height (0..H). psi = alpha + theta is the tilt of the base face to the horizontal.
 // For a point ρ = (w, h):
 //   T = (ρ x ĝ)_z in the paper's hand  = w cos psi - h sin psi,   R² = w² + h².
-// Uniform Coulomb traction τ = -μ_B p (V - V_B)/|V - V_B| with V = Ω ẑ x ρ (rotation about P; the slope
-// reacts only at P). Its moment about P vanishes; with λ = θ'/v_B (v_B < 0 the signed plate
+// Uniform Coulomb traction τ = -μ_B p (V - V_B)/|V - V_B| with V = Ω ẑ x ρ (rotation about P; the
+// slope reacts only at P). Its moment about P vanishes; with λ = θ'/v_B (v_B < 0 the signed plate
 // velocity, so λ < 0 while toppling) this reads
 //   F(λ; psi) = ∫₀^H ∫₀^W (T - λR²) / sqrt(1 - 2Tλ + λ²R²) dw dh = 0                          (M25)
 // μ_B, v, mass and thickness drop out: the motion is pure geometry, dθ/dδ_B = -λ = |λ| with δ_B the
@@ -24,10 +24,11 @@ namespace ref {
 inline constexpr double base_friction_quadrature_tolerance = 1e-11;
 
 // F(λ; psi, W, H) of (M25) by nested adaptive GSL quadrature (GAUSS61 inner over w, outer over h;
-// when the instantaneous centre (w0, h0) = (cos psi, -sin psi)/λ lies inside the block it is passed
-// as a break point to both levels, qagp). Any finite λ (1/m) and psi (rad); W, H > 0 (m). Result in
-// m³. Accuracy: |error| ≲ tolerance · W·H·max(W, H) (checked against the closed form to ≲ 1e-12 of
-// that scale). Throws std::invalid_argument for bad input, std::runtime_error if GSL fails.
+// when the instantaneous centre (w0, h0) = (cos psi, -sin psi)/λ is within 5 max(W, H) of P, qagp
+// with h0 as outer break point and inner break points graded towards w0). Any finite λ (1/m) and psi (rad); W, H > 0 (m). Result in
+// m³. Accuracy: |error| ≲ tolerance · W·H·max(W, H) (measured ≲ 2e-12 of that scale against the
+// closed form at the default tolerance). Throws std::invalid_argument for bad input,
+// std::runtime_error if GSL fails.
 double base_friction_moment(double lambda, double psi, double width, double height,
                             double tolerance = base_friction_quadrature_tolerance);
 
@@ -46,9 +47,9 @@ enum class MomentEvaluation { quadrature, closed_form };
 // rests on its base; the positive root would be a rotation into the slope). Otherwise the unique
 // negative root (F is non-increasing in λ, refs §3.2), bracketed by λ_lo = -2^k/H (k = 0, 1, ...)
 // and solved with GSL Brent to a relative 1e-12. psi in [0, 2 pi] rad (beyond pi the block is past
-// upside down; allowed so that an integrator may step a little past θ = 90°). Accuracy: ~1e-11 relative
-// (limited by F). Cost: ~0.1-1 ms with quadrature, up to ~20 ms while ρ0 lies inside the block
-// (90° < psi < 118° for W/H = 1/3); ~10 µs closed form.
+// upside down; allowed so that an integrator may step a little past θ = 90°). Accuracy: ~1e-11
+// relative (limited by F). Cost: ~0.3 ms with quadrature, ~10 ms while ρ0 lies inside the block
+// (90° < psi < 118° for W/H = 1/3); ~20 µs with the closed form.
 double base_friction_lambda(double psi, double width, double height,
                             MomentEvaluation evaluation = MomentEvaluation::quadrature);
 

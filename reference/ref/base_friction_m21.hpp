@@ -3,8 +3,8 @@
 // W x H block made of n_w x n_h equal square elements (refs §3.7), for comparison with the exact
 // uniform-friction rate of Bray & Goodman (ref/base_friction.hpp, M25).
 //
-// Same geometry and signs as ref/base_friction.hpp: block coordinates (w, h) from the down-slope base
-// corner P, psi the tilt of the base face, λ = θ'/v_B (< 0 while toppling), dθ/dδ_B = -λ.
+// Same geometry and signs as ref/base_friction.hpp: block coordinates (w, h) from the down-slope
+// base corner P, psi the tilt of the base face, λ = θ'/v_B (< 0 while toppling), dθ/dδ_B = -λ.
 // Element e: centre c_e = ((i + 1/2) s, (j + 1/2) s), side s = W/n_w = H/n_h, radius r = s/2, mass
 // m_e. M21 gives it, with S_e = sqrt(|V_e - V_B|² + (rΩ)²) and V_e = Ω ẑ x c_e,
 //   force  -μ_B m_e g (V_e - V_B)/S_e   (at its centre),

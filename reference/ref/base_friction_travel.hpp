@@ -32,10 +32,10 @@ std::vector<double> theta_at_travels(const std::vector<double>& travels, double 
 double travel_at_theta(double theta, double alpha, const RotationRate& rate);
 
 // Bray & Goodman (M25) for a W x H block (m): the rate is base_friction_rate(psi, W, H,
-// evaluation). Cost with quadrature (a few hundred λ): ~0.1 s for alpha = 30°, ~1-4 s when the
-// rotation crosses 90° < psi < 118°; with the closed form ~10 ms.
-std::vector<double> theta_at_travels(const std::vector<double>& travels, double alpha,
-                                     double width, double height,
+// evaluation). Cost with quadrature (a few hundred λ): 0.05 s for θ(δ_B) at alpha = 30°, 1-2 s
+// when the rotation crosses 90° < psi < 118° (where ρ0 is inside the block); closed form ~5 ms.
+std::vector<double> theta_at_travels(const std::vector<double>& travels, double alpha, double width,
+                                     double height,
                                      MomentEvaluation evaluation = MomentEvaluation::quadrature);
 double theta_at_travel(double travel, double alpha, double width, double height,
                        MomentEvaluation evaluation = MomentEvaluation::quadrature);

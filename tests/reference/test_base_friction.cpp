@@ -71,8 +71,8 @@ TEST_CASE("base friction: quadrature and closed form of F agree", "[base_frictio
   for (double ratio : {0.1, 1.0 / 3.0, 1.0, 2.0, 10.0}) {
     const double h = 0.075, w = ratio * h, length = std::max(w, h);
     for (double psi_deg = 0.0; psi_deg <= 180.0; psi_deg += 2.5) {
-      for (double lambda_l :
-           {-1e-4, -0.05, -0.19, -0.21, -0.5, -1.0, -1.3, -1.6, -2.0, -3.0, -5.0, -8.0, -40.0, 0.5}) {
+      for (double lambda_l : {-1e-4, -0.05, -0.19, -0.21, -0.5, -1.0, -1.3, -1.6, -2.0, -3.0, -5.0,
+                              -8.0, -40.0, 0.5}) {
         const double lambda = lambda_l / length, psi = psi_deg * degree;
         const double a = ref::base_friction_moment(lambda, psi, w, h);
         const double b = ref::base_friction_moment_closed_form(lambda, psi, w, h);
@@ -93,7 +93,7 @@ TEST_CASE("base friction: F is non-increasing in lambda", "[base_friction]") {
     double previous = std::numeric_limits<double>::infinity();
     for (double lambda_h = -20.0; lambda_h <= 2.0; lambda_h += 0.25) {
       const double f = ref::base_friction_moment_closed_form(lambda_h / seed_h, psi_deg * degree,
-                                                            seed_w, seed_h);
+                                                             seed_w, seed_h);
       CAPTURE(psi_deg, lambda_h);
       CHECK(f <= previous + 1e-14 * moment_scale(seed_w, seed_h));
       previous = f;
@@ -138,9 +138,9 @@ TEST_CASE("base friction: lambda H of the seed block (refs §3.3)", "[base_frict
     const double psi = row.psi_deg * degree;
     CHECK_THAT(ref::base_friction_lambda(psi, seed_w, seed_h) * seed_h,
                WithinAbs(row.lambda_h, printed(8)));
-    CHECK_THAT(ref::base_friction_lambda(psi, seed_w, seed_h, MomentEvaluation::closed_form) *
-                   seed_h,
-               WithinAbs(row.lambda_h, printed(8)));
+    CHECK_THAT(
+        ref::base_friction_lambda(psi, seed_w, seed_h, MomentEvaluation::closed_form) * seed_h,
+        WithinAbs(row.lambda_h, printed(8)));
     CHECK(ref::base_friction_rate(psi, seed_w, seed_h) ==
           -ref::base_friction_lambda(psi, seed_w, seed_h));
   }
@@ -171,9 +171,9 @@ TEST_CASE("base friction: lambda unit-test values of refs §3.4", "[base_frictio
       const double psi = row.psi_deg * degree;
       CHECK_THAT(ref::base_friction_lambda(psi, shape.ratio * h, h) * h,
                  WithinAbs(row.lambda_h, printed(10)));
-      CHECK_THAT(ref::base_friction_lambda(psi, shape.ratio * h, h, MomentEvaluation::closed_form) *
-                     h,
-                 WithinAbs(row.lambda_h, printed(10)));
+      CHECK_THAT(
+          ref::base_friction_lambda(psi, shape.ratio * h, h, MomentEvaluation::closed_form) * h,
+          WithinAbs(row.lambda_h, printed(10)));
     }
   }
   // W/H = 2: no toppling up to atan 2 = 63.43 degrees.
@@ -187,7 +187,8 @@ TEST_CASE("base friction: lambda is 0 up to the toppling angle and negative beyo
     const double h = 0.075, w = ratio * h;
     const double toppling = std::atan(ratio);
     CAPTURE(ratio);
-    for (double f : {0.0, 0.3, 0.9, 0.999}) CHECK(ref::base_friction_lambda(f * toppling, w, h) == 0.0);
+    for (double f : {0.0, 0.3, 0.9, 0.999})
+      CHECK(ref::base_friction_lambda(f * toppling, w, h) == 0.0);
     // Just past the angle the rate starts linearly: λ(psi_t + ε) / ε converges.
     const double l1 = ref::base_friction_lambda(toppling + 1e-4, w, h);
     const double l2 = ref::base_friction_lambda(toppling + 2e-4, w, h);
@@ -298,8 +299,8 @@ TEST_CASE("base friction: theta at plate travel, the table of refs §3.3", "[bas
   // has entered the block): the same curve.
   const std::vector<double> first(travels.begin(), travels.begin() + 9);
   const auto by_quadrature = ref::theta_at_travels(first, 60.0 * degree, seed_w, seed_h);
-  const auto by_closed_form = ref::theta_at_travels(first, 60.0 * degree, seed_w, seed_h,
-                                                    MomentEvaluation::closed_form);
+  const auto by_closed_form =
+      ref::theta_at_travels(first, 60.0 * degree, seed_w, seed_h, MomentEvaluation::closed_form);
   for (std::size_t i = 0; i < first.size(); ++i) {
     CAPTURE(travel_mm[i]);
     CHECK_THAT(by_quadrature[i], WithinAbs(by_closed_form[i], 1e-9));
@@ -333,8 +334,7 @@ TEST_CASE("base friction: Odeint theta and quadrature travel are inverse functio
   CHECK(worst < 1e-8);
 }
 
-TEST_CASE("base friction: curves for different alpha are shifts of one curve",
-          "[base_friction]") {
+TEST_CASE("base friction: curves for different alpha are shifts of one curve", "[base_friction]") {
   // δ_B(θ; alpha) = G(alpha + θ) - G(alpha) (refs §3.2), so
   // δ_B(θ1 + θ2; alpha) = δ_B(θ1; alpha) + δ_B(θ2; alpha + θ1), and the same for θ(δ_B).
   constexpr auto fast = MomentEvaluation::closed_form;
@@ -351,13 +351,14 @@ TEST_CASE("base friction: curves for different alpha are shifts of one curve",
       const double d1 = 10.0 * mm, d2 = 15.0 * mm;
       const double t1 = ref::theta_at_travel(d1, alpha, seed_w, seed_h, fast);
       const double t12 = ref::theta_at_travel(d1 + d2, alpha, seed_w, seed_h, fast);
-      CHECK_THAT(t12, WithinAbs(t1 + ref::theta_at_travel(d2, alpha + t1, seed_w, seed_h, fast),
-                                1e-8));
+      CHECK_THAT(t12,
+                 WithinAbs(t1 + ref::theta_at_travel(d2, alpha + t1, seed_w, seed_h, fast), 1e-8));
     }
   }
 }
 
-TEST_CASE("base friction: the integrators on a rate with a closed form", "[base_friction][odeint]") {
+TEST_CASE("base friction: the integrators on a rate with a closed form",
+          "[base_friction][odeint]") {
   // rate = k sin psi: δ_B(θ) = ln[tan((alpha + θ)/2) / tan(alpha/2)] / k, and its inverse
   // θ(δ_B) = 2 atan(tan(alpha/2) e^{k δ_B}) - alpha.
   const double k = 17.0;  // rad/m
@@ -460,7 +461,8 @@ TEST_CASE("M21: F21(0) = W H T_cm, one root in the bracket, convergence to M25",
   // Finer elements approach uniform friction: |1 - λ21/λ| falls as the lattice is refined.
   for (double psi_deg : {40.0, 100.0}) {
     const double psi = psi_deg * degree;
-    const double exact = ref::base_friction_lambda(psi, seed_w, seed_h, MomentEvaluation::closed_form);
+    const double exact =
+        ref::base_friction_lambda(psi, seed_w, seed_h, MomentEvaluation::closed_form);
     double previous = 1.0;
     for (int n : {1, 2, 4, 8, 16}) {
       const double error = std::abs(1.0 - ref::m21_lambda(psi, seed_w, seed_h, n, 3 * n) / exact);
@@ -498,10 +500,8 @@ TEST_CASE("base friction: bad input is rejected", "[base_friction]") {
   CHECK_THROWS_AS(ref::base_friction_moment(0.0, 1.0, -1.0, 1.0), std::invalid_argument);
   CHECK_THROWS_AS(ref::base_friction_moment(nan, 1.0, 1.0, 1.0), std::invalid_argument);
   CHECK_THROWS_AS(ref::base_friction_moment(0.0, 1.0, 1.0, 1.0, 1e-13), std::invalid_argument);
-  CHECK_THROWS_AS(ref::base_friction_moment_closed_form(0.0, nan, 1.0, 1.0),
-                  std::invalid_argument);
-  CHECK_THROWS_AS(ref::base_friction_moment_closed_form(0.0, 1.0, 1.0, 0.0),
-                  std::invalid_argument);
+  CHECK_THROWS_AS(ref::base_friction_moment_closed_form(0.0, nan, 1.0, 1.0), std::invalid_argument);
+  CHECK_THROWS_AS(ref::base_friction_moment_closed_form(0.0, 1.0, 1.0, 0.0), std::invalid_argument);
   CHECK_THROWS_AS(ref::base_friction_lambda(-0.1, 1.0, 1.0), std::invalid_argument);
   CHECK_THROWS_AS(ref::base_friction_lambda(6.3, 1.0, 1.0), std::invalid_argument);
   CHECK_THROWS_AS(ref::base_friction_rate(1.0, 1.0, nan), std::invalid_argument);
