@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "ref/base_friction.hpp"
+#include "ref/base_friction_m21.hpp"
+#include "ref/base_friction_travel.hpp"
 #include "ref/block_on_incline.hpp"
 #include "ref/elastic_contact_2d.hpp"
 #include "ref/impact.hpp"
@@ -59,6 +62,12 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"incline.mode", {"alpha", "phi", "b", "h"}},
       {"incline.mode_gb", {"alpha", "phi", "b", "h"}},
       {"kiyama.contact_stiffness", {"E", "nu", "r", "q", "c"}},
+      {"base_friction.rate", {"psi", "W", "H"}},
+      {"base_friction.theta", {"alpha", "delta_B", "W", "H"}},
+      {"base_friction.travel", {"alpha", "theta", "W", "H"}},
+      {"base_friction.m21_rate", {"psi", "W", "H", "n_w", "n_h"}},
+      {"base_friction.theta_m21", {"alpha", "delta_B", "W", "H", "n_w", "n_h"}},
+      {"base_friction.slide_ratio", {"alpha", "phi_w"}},
   };
   const auto infos = ref::solvers();
   CHECK(infos.size() == expected.size());
@@ -123,6 +132,31 @@ TEST_CASE("registry: values equal the direct calls", "[registry]") {
       "kiyama.contact_stiffness",
       {{"E", 750.0 * kgf / 1e-4}, {"nu", 0.3}, {"r", 0.01}, {"q", 0.068 * kgf / 1e-2}, {"c", 1.5}});
   CHECK_THAT(kn / (2650.0 * kgf) * 100.0, WithinRel(3.637e4, 2e-4));
+
+  // Base friction (refs §3), seed block W = 25 mm, H = 75 mm.
+  const double w = 0.025, h = 0.075;
+  CHECK(ref::evaluate("base_friction.rate", {{"psi", 60 * degree}, {"W", w}, {"H", h}}) ==
+        ref::base_friction_rate(60 * degree, w, h));
+  CHECK_THAT(ref::evaluate("base_friction.rate", {{"psi", 60 * degree}, {"W", w}, {"H", h}}) * h,
+             WithinRel(0.95934234, 1e-8));
+  CHECK(ref::evaluate("base_friction.theta",
+                      {{"alpha", 30 * degree}, {"delta_B", 0.02}, {"W", w}, {"H", h}}) ==
+        ref::theta_at_travel(0.02, 30 * degree, w, h));
+  CHECK(ref::evaluate("base_friction.travel",
+                      {{"alpha", 75 * degree}, {"theta", 10 * degree}, {"W", w}, {"H", h}}) ==
+        ref::travel_at_theta(10 * degree, 75 * degree, w, h));
+  const Args lattice{{"psi", 40 * degree}, {"W", w}, {"H", h}, {"n_w", 1.0}, {"n_h", 3.0}};
+  CHECK(ref::evaluate("base_friction.m21_rate", lattice) == ref::m21_rate(40 * degree, w, h, 1, 3));
+  CHECK(ref::evaluate("base_friction.theta_m21", {{"alpha", 60 * degree},
+                                                  {"delta_B", 0.01},
+                                                  {"W", w},
+                                                  {"H", h},
+                                                  {"n_w", 5.0},
+                                                  {"n_h", 15.0}}) ==
+        ref::theta_at_travel_m21(0.01, 60 * degree, w, h, 5, 15));
+  CHECK_THAT(
+      ref::evaluate("base_friction.slide_ratio", {{"alpha", 60 * degree}, {"phi_w", 38 * degree}}),
+      WithinRel(0.475383, 1e-6));
 }
 
 TEST_CASE("registry: bad names and arguments throw with a clear message", "[registry]") {
@@ -150,5 +184,12 @@ TEST_CASE("registry: bad names and arguments throw with a clear message", "[regi
                                 {{"E", 1e7}, {"nu", 0.6}, {"r", 0.01}, {"q", 10.0}, {"c", 1.5}}),
                   std::invalid_argument);
   CHECK_THROWS_AS(ref::evaluate("stability.K19_limit_W", {{"zeta", std::nan("")}}),
+                  std::invalid_argument);
+  CHECK_THROWS_WITH(
+      ref::evaluate("base_friction.m21_rate",
+                    {{"psi", 1.0}, {"W", 0.025}, {"H", 0.075}, {"n_w", 1.5}, {"n_h", 3.0}}),
+      Contains("base_friction.m21_rate") && Contains("n_w must be a whole number"));
+  CHECK_THROWS_AS(ref::evaluate("base_friction.theta",
+                                {{"alpha", 2.0}, {"delta_B", 0.01}, {"W", 0.025}, {"H", 0.075}}),
                   std::invalid_argument);
 }
