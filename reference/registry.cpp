@@ -1,8 +1,12 @@
 // Name-based table of the reference solvers (see ref/registry.hpp).
 #include "ref/registry.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
+#include "ref/base_friction.hpp"
+#include "ref/base_friction_m21.hpp"
+#include "ref/base_friction_travel.hpp"
 #include "ref/block_on_incline.hpp"
 #include "ref/elastic_contact_2d.hpp"
 #include "ref/free_fall.hpp"
@@ -22,6 +26,13 @@ struct Args {
   const std::map<std::string, double>& values;
   double operator()(const std::string& name) const { return values.at(name); }
   Oscillator oscillator() const { return Oscillator((*this)("m"), (*this)("K"), (*this)("eta")); }
+  // An argument that must hold a whole number in [1, 10^6].
+  int count(const std::string& name) const {
+    const double value = (*this)(name);
+    if (!(value >= 1.0 && value <= 1e6 && value == std::floor(value)))
+      detail::fail("ref::evaluate", name + " must be a whole number in [1, 1e6]", value);
+    return static_cast<int>(value);
+  }
 };
 
 struct Entry {
@@ -41,6 +52,13 @@ const SolverArgument time{"t", "s", "time"};
 const SolverArgument gravity{"g", "m/s^2", "gravitational acceleration"};
 const SolverArgument slope{"alpha", "rad", "slope angle"};
 const SolverArgument friction{"phi", "rad", "base friction angle"};
+const SolverArgument tilt{"psi", "rad", "tilt of the block's base face, alpha + theta"};
+const SolverArgument block_width{"W", "m", "block base (the face on the slope)"};
+const SolverArgument block_height{"H", "m", "block height"};
+const SolverArgument elements_w{"n_w", "1", "square elements along W (integer)"};
+const SolverArgument elements_h{"n_h", "1", "square elements along H (integer)"};
+const SolverArgument plate_travel{"delta_B", "m", "base-plate travel"};
+const SolverArgument rotation{"theta", "rad", "rotation of the block, in [0, pi/2]"};
 
 }  // namespace argument
 
@@ -159,6 +177,48 @@ const std::vector<Entry>& table() {
          detail::require_positive("incline.mode_gb", "h", a("h"));
          return static_cast<double>(mode_goodman_bray(a("alpha"), a("phi"), a("b") / a("h")));
        }},
+      {{"base_friction.rate",
+        "Bray & Goodman rotation per plate travel dtheta/ddelta_B = -lambda, 0 if no toppling "
+        "(M25, refs §3.1-3.2; nested quadrature)",
+        {argument::tilt, argument::block_width, argument::block_height},
+        "rad/m"},
+       [](const Args& a) { return base_friction_rate(a("psi"), a("W"), a("H")); }},
+      {{"base_friction.theta",
+        "Bray & Goodman rotation at plate travel delta_B from tilt alpha, capped at pi/2 "
+        "(M25, refs §3.3; Odeint dopri5)",
+        {argument::slope, argument::plate_travel, argument::block_width, argument::block_height},
+        "rad"},
+       [](const Args& a) { return theta_at_travel(a("delta_B"), a("alpha"), a("W"), a("H")); }},
+      {{"base_friction.travel",
+        "plate travel that turns the block by theta from tilt alpha, inf if it does not topple "
+        "(M25, refs §3.3; quadrature)",
+        {argument::slope, argument::rotation, argument::block_width, argument::block_height},
+        "m"},
+       [](const Args& a) { return travel_at_theta(a("theta"), a("alpha"), a("W"), a("H")); }},
+      {{"base_friction.m21_rate",
+        "quasi-static dtheta/ddelta_B of a rigid block of n_w x n_h square elements under "
+        "Matsui's element law (M21, refs §3.7)",
+        {argument::tilt, argument::block_width, argument::block_height, argument::elements_w,
+         argument::elements_h},
+        "rad/m"},
+       [](const Args& a) {
+         return m21_rate(a("psi"), a("W"), a("H"), a.count("n_w"), a.count("n_h"));
+       }},
+      {{"base_friction.theta_m21",
+        "rotation at plate travel delta_B under the M21 rate (refs §3.7; Odeint dopri5)",
+        {argument::slope, argument::plate_travel, argument::block_width, argument::block_height,
+         argument::elements_w, argument::elements_h},
+        "rad"},
+       [](const Args& a) {
+         return theta_at_travel_m21(a("delta_B"), a("alpha"), a("W"), a("H"), a.count("n_w"),
+                                    a.count("n_h"));
+       }},
+      {{"base_friction.slide_ratio",
+        "slide per plate travel of a block on its long face, sin alpha - tan phi_w cos alpha, "
+        "0 if it holds (M22, refs §3.5)",
+        {argument::slope, {"phi_w", "rad", "block-slope friction angle"}},
+        "1"},
+       [](const Args& a) { return slide_ratio(a("alpha"), a("phi_w")); }},
       {{"kiyama.contact_stiffness",
         "K_n = q/delta of two equal cylinders (K22, K23, refs §5)",
         {{"E", "Pa", "Young's modulus"},
