@@ -1,5 +1,6 @@
 #include "dem/cases/case_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -269,6 +270,61 @@ struct Reader {
   }
 };
 
+/// [base_friction] (M21, base_friction.hpp): the base plate's velocity (constant, or a [[drive]]),
+/// the gravity g_B pressing the model onto it and the regularisation speed v_ε; μ_B per [[material]].
+void read_base_friction(const TableReader& top, Reader& rd, const std::vector<double>& mu,
+                        const std::string& mu_line, std::string& v_eps_location) {
+  BasePlate& plate = rd.c.model.base_plate;
+  const bool any_mu = std::any_of(mu.begin(), mu.end(), [](double v) { return v > 0.0; });
+  const toml::table* t = top.table("base_friction");
+  if (!t) {
+    if (any_mu)
+      throw CaseError(fmt::format("{}: material.base_friction: a material has base friction (μ_B) but the case "
+                                  "has no [base_friction] table (plate_velocity, regularisation_speed)", mu_line));
+    return;
+  }
+  TableReader r(*t, "base_friction", rd.file);
+  plate.enabled = true;
+  plate.friction = mu;
+  if (!any_mu) r.fail_here("no [[material]] has base_friction (μ_B) > 0");
+  if (r.has("plate_velocity") == r.has("plate_drive"))
+    r.fail_here("give exactly one of plate_velocity ([vx, vy] or { magnitude, direction }) or plate_drive (a [[drive]] name)");
+  if (r.has("plate_drive")) {
+    const std::string d = r.string("plate_drive");
+    auto it = rd.drive_index.find(d);
+    if (it == rd.drive_index.end()) r.fail("plate_drive", fmt::format("unknown drive \"{}\" (declare it in [[drive]])", d));
+    plate.drive = it->second;
+  } else if (r.node("plate_velocity")->is_table()) {
+    TableReader v(*r.table("plate_velocity"), "base_friction.plate_velocity", rd.file);
+    const double mag = v.quantity("magnitude", dims::velocity);
+    const double dir = v.quantity("direction", dims::angle);
+    plate.velocity = {mag * std::cos(dir), mag * std::sin(dir)};
+    v.finish();
+  } else {
+    plate.velocity = r.vector("plate_velocity", dims::velocity);
+  }
+  plate.normal_gravity = r.quantity("normal_gravity", dims::acceleration, 9.80665);
+  rd.positive(r, "normal_gravity", plate.normal_gravity);
+  plate.regularisation_speed = r.quantity("regularisation_speed", dims::velocity);
+  rd.positive(r, "regularisation_speed", plate.regularisation_speed);
+  v_eps_location = where(*r.node("regularisation_speed"), rd.file);
+  r.finish();
+}
+
+/// The linear range of the regularised (M21) is a dashpot of rate c: refuse cΔt > 1 (base_friction.hpp).
+void check_base_friction_rate(const Model& m, const std::string& v_eps_location) {
+  if (!m.base_plate.enabled || m.numerics.allow_unstable) return;
+  const double rate = max_base_friction_rate(m.base_plate, m.elements);
+  if (rate * m.numerics.dt > 1.0)
+    throw CaseError(fmt::format(
+        "{}: base_friction.regularisation_speed: {:.6g} m/s makes the base friction a dashpot of rate {:.6g} 1/s "
+        "below it (μ_B g_B / v_ε, or its rotational analogue), and Δt × rate = {:.4g} > 1 (the explicit update "
+        "would overshoot the plate velocity; unstable above 2). Use regularisation_speed >= {:.6g} m/s or "
+        "numerics.dt <= {:.6g} s",
+        v_eps_location, m.base_plate.regularisation_speed, rate, rate * m.numerics.dt,
+        m.base_plate.regularisation_speed * rate * m.numerics.dt, 1.0 / rate));
+}
+
 ProbeKind probe_kind(const std::string& s) {
   if (s == "value") return ProbeKind::value;
   if (s == "max") return ProbeKind::max;
@@ -325,12 +381,17 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     r.finish();
   }
   // [[material]]
+  std::vector<double> base_mu;   // μ_B per material (base friction, M21)
+  std::string base_mu_line;      // where one was given
   rd.each(top, "material", [&](TableReader& r, std::size_t) {
     Material mat;
     mat.name = r.string("name");
     mat.density = r.quantity("density", dims::density, 0.0);
     if (rd.material_index.count(mat.name)) r.fail("name", fmt::format("material \"{}\" declared twice", mat.name));
     rd.non_negative(r, "density", mat.density);
+    base_mu.push_back(r.number("base_friction", 0.0));  // μ_B (M21)
+    rd.non_negative(r, "base_friction", base_mu.back());
+    if (r.has("base_friction")) base_mu_line = where(*r.node("base_friction"), file);
     rd.material_index[mat.name] = static_cast<std::int32_t>(m.materials.size());
     m.materials.push_back(mat);
   });
@@ -363,6 +424,8 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     rd.drive_index[name] = static_cast<std::int32_t>(m.drives.size());
     m.drives.push_back(h);
   });
+  std::string v_eps_location;
+  read_base_friction(top, rd, base_mu, base_mu_line, v_eps_location);
   // [[contact]]
   rd.each(top, "contact", [&](TableReader& r, std::size_t) { rd.read_contact(r); });
   // [[element]]
@@ -465,6 +528,7 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
   } else {
     top.fail("numerics", "missing [numerics] table (dt, duration)");
   }
+  check_base_friction_rate(m, v_eps_location);
   // [output]
   if (const toml::table* t = top.table("output")) {
     TableReader r(*t, "output", file);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "dem/core/base_friction.hpp"
 #include "dem/core/elements.hpp"
 #include "dem/contact/face_contact.hpp"
 #include "dem/contact/linear_contact.hpp"
@@ -78,6 +79,7 @@ struct Model {
   std::vector<Wall> walls;
   std::vector<VelocityHistory> drives;
   Vec2 gravity;             // [m/s²]
+  BasePlate base_plate;     // base friction (M21), base_friction.hpp; disabled by default
   double thickness = 1.0;   // element depth l [m] (model.md: "per unit thickness" is l = 1)
   Numerics numerics;
 

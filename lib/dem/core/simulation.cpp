@@ -536,9 +536,20 @@ void Simulation::step() {
   sweep_face_pairs(inv_dt);
   sweep_linear_walls(inv_dt);
   sweep_face_walls(inv_dt);
+  if (m_.base_plate.enabled) advance_base_plate();
   integrate();
   ++step_;
   time_ = static_cast<double>(step_) * m_.numerics.dt;
+}
+
+void Simulation::advance_base_plate() {
+  // (M21) on the velocities of the array, v_{k−1}: the velocity over [t − Δt, t], so the plate's is
+  // taken at t − Δt/2; then the plate moves by its velocity over [t, t + Δt] (as a driven wall does).
+  const double dt = m_.numerics.dt;
+  add_base_friction(m_.elements, m_.base_plate, plate_velocity(m_.base_plate, m_.drives, time_ - 0.5 * dt));
+  const Vec2 d = plate_velocity(m_.base_plate, m_.drives, time_ + 0.5 * dt) * dt;
+  plate_travel_.displacement = plate_travel_.displacement + d;
+  plate_travel_.travel += norm(d);
 }
 
 Energies Simulation::energies() const {

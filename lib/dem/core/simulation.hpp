@@ -51,6 +51,8 @@ class Simulation {
   /// the current candidate contacts, stability.hpp); infinity if no contact is possible.
   double stability_limit() const;
   std::int64_t rebuilds() const { return rebuilds_; }
+  /// The base plate's displacement and travel δ_B since the start (base_friction.hpp).
+  const BasePlateTravel& plate_travel() const { return plate_travel_; }
 
  private:
   void rebuild();
@@ -61,6 +63,7 @@ class Simulation {
   void sweep_linear_walls(double inv_dt);
   void sweep_face_walls(double inv_dt);
   void integrate();
+  void advance_base_plate();  // base friction (M21) forces, plate travel
   void start_linear(LinearSlot& s, double overlap, double du_n, double du_s, double mass_i, double mass_j) const;
 
   Model m_;
@@ -76,6 +79,7 @@ class Simulation {
   double time_ = 0.0;
   std::int64_t step_ = 0;
   std::int64_t rebuilds_ = 0;
+  BasePlateTravel plate_travel_;
   bool preloading_ = false;  // the static zeroth step of apply_preloads()
 };
 

@@ -3,6 +3,7 @@
 #include "dem/cases/text.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -24,6 +25,22 @@ long wall_ref(const std::string& s, const Model& m) {
   for (std::size_t k = 0; k < m.walls.size(); ++k)
     if (m.walls[k].name == s) return static_cast<long>(k);
   return -1;
+}
+
+/// (M23, M24): slide of the lower corner of element u down a slope inclined at α,
+/// δ = (x_c0 − x_c) cos α + (y_c0 − y_c) sin α, with the corner at x + √2 r cos(5π/4 + φ) (φ = α + θ is
+/// the element's absolute rotation: the corner (−1, −1) of its square) and x_c0, y_c0 its start.
+QuantityFn corner_slide(std::size_t u, double alpha, const Model& m) {
+  auto corner = [u](const Elements& e) {
+    const double a = 1.25 * std::numbers::pi + e.phi[u], d = std::sqrt(2.0) * e.radius[u];
+    return Vec2{e.x[u] + d * std::cos(a), e.y[u] + d * std::sin(a)};
+  };
+  const Vec2 c0 = corner(m.elements);
+  const double ca = std::cos(alpha), sa = std::sin(alpha);
+  return [u, c0, ca, sa, corner](const Simulation& s) {
+    const Vec2 c = corner(s.model().elements);
+    return (c0.x - c.x) * ca + (c0.y - c.y) * sa;
+  };
 }
 
 }  // namespace
@@ -53,6 +70,30 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
   if (name == "energy.elastic") return [](const Simulation& s) { return s.energies().elastic; };
   if (name == "energy.total") return [](const Simulation& s) { return s.energies().total(); };
   if (name == "mean_increment") return mean_increment;
+  // base plate (M21): travel δ_B = ∫|v_B| dt and displacement since the start
+  if (name == "plate_travel") return [](const Simulation& s) { return s.plate_travel().travel; };
+  if (name == "plate_dx") return [](const Simulation& s) { return s.plate_travel().displacement.x; };
+  if (name == "plate_dy") return [](const Simulation& s) { return s.plate_travel().displacement.y; };
+  // e<i>.corner_slide(α): read before splitting on '.', so that α may have decimals
+  if (const auto dot = name.find('.'); dot != std::string::npos && name.compare(dot + 1, 13, "corner_slide(") == 0) {
+    long i = -1;
+    try {
+      i = element_ref(name.substr(0, dot), m);
+    } catch (const std::invalid_argument& e) {
+      throw bad(e.what());
+    }
+    if (i < 0 || name.back() != ')') throw bad("expected e<i>.corner_slide(alpha), alpha in degrees");
+    double alpha_deg = 0.0;
+    try {
+      std::size_t used = 0;
+      const std::string arg = name.substr(dot + 14, name.size() - dot - 15);
+      alpha_deg = std::stod(arg, &used);
+      if (used != arg.size()) throw std::invalid_argument(arg);
+    } catch (const std::exception&) {
+      throw bad("expected a number (degrees) in corner_slide(alpha)");
+    }
+    return corner_slide(static_cast<std::size_t>(i), alpha_deg * std::numbers::pi / 180.0, m);
+  }
   long i = -1;
   try {
     i = p.empty() ? -1 : element_ref(p[0], m);

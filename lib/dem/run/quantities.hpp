@@ -9,6 +9,11 @@
 //   e<i>.links.<wall or e<j>>          linked segments of that contact (face law; 1 for linear)
 //   <wall>.fx  <wall>.fy               force of the elements on the wall [N]
 //   <wall>.x   <wall>.y                wall position (first end point) [m]
+//   plate_travel                       base plate travel δ_B = ∫|v_B| dt (base friction, M21) [m]
+//   plate_dx   plate_dy                base plate displacement since the start [m]
+//   e<i>.corner_slide(α)               slide δ of element i's lower corner (−1,−1) down a slope inclined
+//                                      at α degrees in the case's frame (M23, M24; 0: slope = x axis,
+//                                      down-slope −x) since the start [m]
 #include <functional>
 #include <string>
 
