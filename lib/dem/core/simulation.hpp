@@ -53,6 +53,7 @@ class Simulation {
   std::int64_t rebuilds() const { return rebuilds_; }
 
  private:
+  friend struct SimulationAccess;  // checkpoints (run/checkpoint.cpp) save and restore the whole state
   void rebuild();
   void apply_preloads();
   bool needs_rebuild() const;
