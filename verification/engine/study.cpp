@@ -374,7 +374,8 @@ RunOut run_one(const Study& s, const std::vector<std::string>& sets, const fs::p
     for (const auto& [k, v] : r.probes) probes[k] = v ? nlohmann::json(*v) : nlohmann::json(nullptr);
     dem::write_file_atomic(entry, nlohmann::json{{"status", r.status}, {"message", r.message},
                                                  {"eps", r.element_steps_per_second}, {"probes", probes},
-                                                 {"case", c.path.string()}, {"overrides", sets}}
+                                                 {"case", c.path.string()}, {"overrides", sets},
+                                                 {"code", code_identity()}, {"provenance", dem::provenance()}}
                                       .dump() + "\n", false);
     ++g_cache->ran;
   }

@@ -214,7 +214,7 @@ void write_checkpoint(const std::filesystem::path& file, const Simulation& sim, 
   w.put<std::uint32_t>(0x01020304u);
   w.put_str(case_hash(c));
   w.put_str(c.path.string());
-  w.put_str(provenance()["code_version"].get<std::string>());
+  w.put_str(nlohmann::json{{"case", c.path.string()}, {"overrides", c.overrides}, {"provenance", provenance()}}.dump());
   w.put(sim.steps());
   w.put(sim.time());
   w.put(sim.dt());
@@ -243,7 +243,11 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   Checkpoint ck;
   ck.case_hash = r.get_str();
   ck.case_path = r.get_str();
-  ck.code_version = r.get_str();
+  try {
+    ck.meta = nlohmann::json::parse(r.get_str());
+  } catch (const nlohmann::json::exception&) {
+    throw OutputError(fmt::format("{}: corrupt checkpoint (meta)", what));
+  }
   ck.step = r.get<std::int64_t>();
   ck.time = r.get<double>();
   ck.dt = r.get<double>();

@@ -8,7 +8,8 @@
 // uninterrupted run.
 //
 // Format (little-endian host order, checked by a marker): "DEM2D-CHECKPOINT\n", u32 version, u32
-// 0x01020304, strings (u64 length + bytes) case hash, case path, code version, i64 step, f64 time,
+// 0x01020304, strings (u64 length + bytes) case hash, case path, meta (JSON: case, overrides,
+// provenance), i64 step, f64 time,
 // f64 dt, then the state sections (checkpoint.cpp, write_state), the run loop numbers (u64 count +
 // f64s), and an FNV-1a 64 checksum of everything before it.
 #include <cstdint>
@@ -24,7 +25,8 @@ namespace dem {
 inline constexpr std::uint32_t kCheckpointVersion = 1;
 
 struct Checkpoint {
-  std::string case_hash, case_path, code_version;
+  std::string case_hash, case_path;
+  nlohmann::json meta;       // {case, overrides, provenance (code version, date, machine, ...)}
   std::int64_t step = 0;
   double time = 0.0, dt = 0.0;
   std::string state;         // the Simulation's state, serialised (restore_simulation reads it)

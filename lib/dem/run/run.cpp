@@ -177,8 +177,10 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
     if (c.output.vtk) std::filesystem::create_directories(opt.out_dir / "vtk");
   }
   std::string row;
+  std::int64_t row_step = -1, snapshot_step = -1;  // the step of the last row / snapshot written
   auto write_row = [&] {
     if (!csv.is_open()) return;
+    row_step = sim.steps();
     row.clear();
     for (std::size_t k = 0; k < series.size(); ++k) {
       if (k) row += ',';
@@ -195,6 +197,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   };
   auto snapshot = [&] {
     if (!write || !c.output.vtk) return;
+    snapshot_step = sim.steps();
     const std::string name = fmt::format("snapshot_{:09d}.vtp", sim.steps());
     write_vtp(opt.out_dir / "vtk" / name, sim);
     snapshots.emplace_back(sim.time(), "vtk/" + name);
@@ -307,8 +310,10 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   }
   if (show) fmt::print(stderr, "\r{:70s}\r", "");
   const auto t1 = std::chrono::steady_clock::now();
-  write_row();
-  snapshot();
+  // The final row and snapshot (an interrupted run does not repeat the ones of its last step).
+  const bool interrupted = res.status == "interrupted";
+  if (!(interrupted && row_step == sim.steps())) write_row();
+  if (!(interrupted && snapshot_step == sim.steps())) snapshot();
 
   res.steps = sim.steps();
   res.time = sim.time();
@@ -373,7 +378,8 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   res.summary["case_hash"] = case_hash(c);
   if (restart)
     res.summary["restart"] = {{"checkpoint", opt.restart.string()}, {"from_case", restart->case_path},
-                              {"step", restart->step}, {"time", restart->time}, {"other_case", opt.restart_other_case}};
+                              {"step", restart->step}, {"time", restart->time}, {"other_case", opt.restart_other_case},
+                              {"checkpoint_written_by", restart->meta}};
   if (write) {
     if (res.status == "interrupted" || opt.checkpoint_at_end) checkpoint();
     if (checkpoint_step) res.summary["checkpoint"] = {{"file", "checkpoint.bin"}, {"step", *checkpoint_step}};
