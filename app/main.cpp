@@ -159,6 +159,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   dem::install_interrupt_handlers();  // SIGINT / SIGTERM: runs stop at the next step and write everything
+  std::signal(SIGXFSZ, SIG_IGN);      // a file size limit makes writes fail (reported, exit 4) instead of killing
   try {
     if (*run) {
       run_opt.restart = !restart.empty() ? restart : start_from;
