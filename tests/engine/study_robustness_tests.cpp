@@ -31,7 +31,9 @@ fs::path fresh_dir(const std::string& name) {
 
 /// A copy of verification/rest_on_wall/study.toml (a quick two-run study) with `edit` applied, placed
 /// in verification/<folder>/ of a temporary tree whose cases/ points to the real case.
-fs::path study_copy(const std::string& folder, const std::string& replace = {}, const std::string& with = {}) {
+/// `replace` is replaced at every occurrence; `prefix` goes before the first line (root keys).
+fs::path study_copy(const std::string& folder, const std::string& replace = {}, const std::string& with = {},
+                    const std::string& prefix = {}) {
   const fs::path root = fresh_dir("tree_" + folder);
   fs::create_directories(root / "verification" / folder);
   fs::create_directories(root / "cases" / "basic");
@@ -41,10 +43,11 @@ fs::path study_copy(const std::string& folder, const std::string& replace = {}, 
   ss << in.rdbuf();
   std::string text = ss.str();
   if (!replace.empty()) {
-    const auto at = text.find(replace);
-    REQUIRE(at != std::string::npos);
-    text.replace(at, replace.size(), with);
+    REQUIRE(text.find(replace) != std::string::npos);
+    for (auto at = text.find(replace); at != std::string::npos; at = text.find(replace, at + with.size()))
+      text.replace(at, replace.size(), with);
   }
+  text = prefix + text;
   const fs::path file = root / "verification" / folder / "study.toml";
   std::ofstream(file) << text;
   return file;
@@ -64,21 +67,29 @@ ver::StudyOptions quiet(const fs::path& out) {
 }  // namespace
 
 TEST_CASE("A malformed study file gets a located error, not a crash", "[study]") {
-  // check = [1] instead of [[check]] tables (used to dereference a null table).
-  const fs::path f = study_copy("bad_check", "[[check]]\nprobe = \"overlap\"", "check = [1]\n[other]\nprobe = \"overlap\"");
+  // check = [1] (an array of numbers) instead of [[check]] tables: used to dereference a null table.
+  const fs::path f = study_copy("bad_check", "[[check]]", "[other_check]", "check = [1]\n");
   const fs::path out = fresh_dir("bad_check_out");
-  CHECK_THROWS_WITH(ver::run_study(f, quiet(out)), Contains("study.toml:") && Contains(": check: expected [[check]] tables"));
-  // A variant that is not a table.
-  const fs::path g = study_copy("bad_variant", "[[variant]]\nlabel = \"K18\"", "variant = [2]\n[x]\nlabel = \"K18\"");
-  CHECK_THROWS_WITH(ver::run_study(g, quiet(out)), Contains(": variant: expected [[variant]] tables"));
+  CHECK_THROWS_WITH(ver::run_study(f, quiet(out)), Contains("study.toml:1: check: expected [[check]] tables"));
+  // variant = [2]: an array that holds no table.
+  const fs::path g = study_copy("bad_variant", "[[variant]]", "[[other_variant]]", "variant = [2]\n");
+  CHECK_THROWS_WITH(ver::run_study(g, quiet(out)), Contains("study.toml:1: variant: expected [[variant]] tables"));
+  // check = 3: not an array at all.
+  const fs::path h = study_copy("bad_check3", "[[check]]", "[other_check]", "check = 3\n");
+  CHECK_THROWS_WITH(ver::run_study(h, quiet(out)), Contains("study.toml:1: check: expected [[check]] tables"));
 }
 
 TEST_CASE("A study name cannot write outside the output folder", "[study]") {
-  for (const char* name : {"../escape", "a/b", "..", "/tmp/x"}) {
+  // From a scratch working directory, so that a broken guard writes only below it.
+  const fs::path cwd = fs::current_path(), scratch = fresh_dir("bad_name_cwd") / "x" / "y";
+  fs::create_directories(scratch);
+  fs::current_path(scratch);
+  for (const char* name : {"../escape", "a/b", "..", "/tmp/dem2d_unit_study/abs"}) {
     INFO(name);
     const fs::path f = study_copy("bad_name", "[study]\n", fmt_name(name));
     CHECK_THROWS_WITH(ver::run_study(f, quiet({})), Contains("study.name") && Contains("plain folder name"));
   }
+  fs::current_path(cwd);
 }
 
 TEST_CASE("A killed study leaves no stale result and continues from its finished runs", "[study]") {
