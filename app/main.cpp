@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
   study->add_option("--out", out_dir, "Output folder (default build/studies/<name>)");
   study->add_option("-j,--jobs", jobs, "Runs in parallel")->check(CLI::PositiveNumber);
   bool fresh = false;
-  study->add_flag("--fresh", fresh, "Ignore (and clear) the cache of finished runs in the study folder");
+  study->add_flag("--fresh", fresh, "Clear the cache of finished runs in the study folder first (run everything again)");
 
   std::string studies_dir = "build/studies", report_dir = "build/reports";
   auto* rep = app.add_subcommand("report", "Write the verification report (index.html, index.md) from study results");

@@ -418,12 +418,9 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   dem::write_file_atomic(out / "running.json", nlohmann::json{{"study", s.name}, {"status", "running"},
                                                               {"provenance", dem::provenance()}}.dump(2) + "\n");
   RunCache cache;
-  if (opt.use_cache) {
-    cache.dir = out / "cache";
-    fs::create_directories(cache.dir);
-  } else {
-    fs::remove_all(out / "cache");
-  }
+  cache.dir = out / "cache";
+  if (!opt.use_cache) fs::remove_all(cache.dir);  // --fresh: forget earlier runs, record the new ones
+  fs::create_directories(cache.dir);
   g_cache = &cache;
   struct Reset {
     ~Reset() { g_cache = nullptr; }

@@ -16,7 +16,7 @@ struct StudyOptions {
   std::filesystem::path out_dir;   // default: build/studies/<name>
   int jobs = 1;                    // runs in parallel
   bool print = true;               // print the table
-  bool use_cache = true;           // reuse finished runs from <out>/cache (false: --fresh, clears it)
+  bool use_cache = true;           // reuse finished runs from <out>/cache (false: --fresh, clears it first)
 };
 
 /// Thrown when SIGINT / SIGTERM stopped a run: the study stops without writing result.json (finished
