@@ -1,10 +1,13 @@
 // dem2d — the command line of the 2D DEM verification testbed.
-//   dem2d run CASE [--set key=value]... [--out DIR]      run a case, write series.csv, summary.json, vtk/
+//   dem2d run CASE [--set key=value]... [--out DIR] [--checkpoint-every N] [--checkpoint-at-end]
+//             [--restart CHECKPOINT | --start-from CHECKPOINT]
+//                                                        run a case, write series.csv, summary.json, vtk/
 //   dem2d check CASE [--set key=value]...                check a case and print what it resolves to
-//   dem2d study STUDY [--out DIR] [--jobs N]             run one verification study (verification/*/study.toml)
+//   dem2d study STUDY [--out DIR] [--jobs N] [--fresh]   run one verification study (verification/*/study.toml)
 //   dem2d report [--studies DIR] [--out DIR]             write the verification report from study results
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <filesystem>
@@ -16,10 +19,13 @@
 #include <nlohmann/json.hpp>
 
 #include "dem/cases/case_file.hpp"
+#include "dem/run/interrupt.hpp"
+#include "dem/run/output_files.hpp"
 #include "dem/run/run.hpp"
 #include "dem/core/simulation.hpp"
 #include "engine/study.hpp"
 #include "report.hpp"
+#include "study_result.hpp"
 
 namespace fs = std::filesystem;
 
@@ -40,10 +46,12 @@ int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
   return 0;
 }
 
-int cmd_run(const fs::path& file, const std::vector<std::string>& sets, fs::path out, bool quiet) {
+/// The exit status of a command stopped by SIGINT / SIGTERM: 128 + the signal, as a shell reports it.
+int interrupted_exit() { return 128 + (dem::interrupt_signal() ? dem::interrupt_signal() : SIGTERM); }
+
+int cmd_run(const fs::path& file, const std::vector<std::string>& sets, fs::path out, bool quiet, dem::RunOptions opt) {
   const dem::Case c = dem::read_case(file, sets);
   if (out.empty()) out = fs::path("runs") / file.stem();
-  dem::RunOptions opt;
   opt.out_dir = out;
   opt.progress = !quiet;
   const dem::RunResult r = dem::run_case(c, opt);
@@ -58,41 +66,46 @@ int cmd_run(const fs::path& file, const std::vector<std::string>& sets, fs::path
     fmt::print(stderr, "error: {}: {}\n", file.string(), r.message);
     return 3;
   }
+  if (r.status == "interrupted") {
+    fmt::print(stderr, "interrupted: {}: {}; everything is written, checkpoint {}\n", file.string(), r.message,
+               (out / "checkpoint.bin").string());
+    return interrupted_exit();
+  }
   return 0;
 }
 
 /// The summary table of every study's checks, on the terminal (the report has the full tables).
 void print_summary(const fs::path& studies_dir) {
-  std::vector<fs::path> files;
-  if (fs::is_directory(studies_dir))
-    for (const auto& d : fs::directory_iterator(studies_dir))
-      if (fs::exists(d.path() / "result.json")) files.push_back(d.path() / "result.json");
-  std::sort(files.begin(), files.end());
   int pass = 0, fail = 0;
   fmt::print("\n{:<24} {:>7} {:>7}  {:<12} {}\n", "study", "checks", "failed", "orders", "title");
-  for (const auto& f : files) {
-    nlohmann::json j;
-    try {
-      std::ifstream(f) >> j;
-    } catch (const std::exception& e) {
-      fmt::print("{:<24} unreadable: {}\n", f.parent_path().filename().string(), e.what());
+  if (!fs::is_directory(studies_dir)) {
+    fmt::print("studies: none (no folder {})\n\n", studies_dir.string());
+    return;
+  }
+  // Tolerant reading (study_result.hpp): a broken or incomplete study is listed as such; the others follow.
+  for (const report::StudyResult& st : report::read_study_results(studies_dir)) {
+    if (!st.readable()) {
+      fmt::print("{:<24} BROKEN: {}\n", st.folder, st.read_error);
       ++fail;
       continue;
     }
+    const nlohmann::json& j = st.result;
     int n = 0, bad = 0, orders = 0, orders_ok = 0;
-    for (const auto& c : j.value("checks", nlohmann::json::array())) {
+    for (const auto& c : report::array_field(j, "checks")) {
       ++n;
-      if (!c.value("passed", false)) ++bad;
-      if (!c["expected_order"].is_null()) {
+      if (report::check_status(c) != "PASS") ++bad;
+      const auto expected = report::number_field(c, "expected_order");
+      if (expected) {
         ++orders;
-        if (!c["observed_order"].is_null() &&
-            std::abs(c["observed_order"].get<double>() - c["expected_order"].get<double>()) <= c["order_band"].get<double>())
-          ++orders_ok;
+        const auto observed = report::number_field(c, "observed_order");
+        const auto band = report::number_field(c, "order_band");
+        if (observed && band && std::abs(*observed - *expected) <= *band) ++orders_ok;
       }
     }
-    (j.value("passed", false) ? pass : fail) += 1;
-    fmt::print("{:<24} {:>7} {:>7}  {:<12} {}\n", j.value("study", std::string("?")), n, bad,
-               orders ? fmt::format("{}/{} ok", orders_ok, orders) : std::string("-"), j.value("title", std::string()));
+    (report::study_status(st) == "PASS" ? pass : fail) += 1;
+    const std::string name = report::text_field(j, "study");
+    fmt::print("{:<24} {:>7} {:>7}  {:<12} {}\n", name.empty() ? st.folder : name, n, bad,
+               orders ? fmt::format("{}/{} ok", orders_ok, orders) : std::string("-"), report::text_field(j, "title"));
   }
   fmt::print("studies: {} passed, {} failed\n\n", pass, fail);
 }
@@ -113,6 +126,19 @@ int main(int argc, char** argv) {
   run->add_option("--set", sets, "Override a case value: key=value, e.g. numerics.dt=1e-6 or \"contact.0.kn=12 kN/mm\"");
   run->add_option("--out", out_dir, "Output folder (default runs/<case name>)");
   run->add_flag("-q,--quiet", quiet, "No progress or summary on the terminal");
+  dem::RunOptions run_opt;
+  std::string restart, start_from;
+  run->add_option("--checkpoint-every", run_opt.checkpoint_every,
+                  "Write <out>/checkpoint.bin every N steps (replaced each time; SIGINT/SIGTERM always write one)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_flag("--checkpoint-at-end", run_opt.checkpoint_at_end, "Write <out>/checkpoint.bin at the end of the run");
+  auto* restart_opt = run->add_option("--restart", restart,
+                                      "Continue from a checkpoint of this case (bit for bit like the uninterrupted run)")
+                          ->check(CLI::ExistingFile);
+  run->add_option("--start-from", start_from,
+                  "Start this case from the state of a checkpoint of another case (same elements, walls and dt)")
+      ->check(CLI::ExistingFile)
+      ->excludes(restart_opt);
 
   auto* check = app.add_subcommand("check", "Check a case (keys, units, values, time step) without running it");
   check->add_option("case", case_file, "Case file (TOML)")->required()->check(CLI::ExistingFile);
@@ -123,6 +149,8 @@ int main(int argc, char** argv) {
   study->add_option("study", study_file, "Study file (verification/<name>/study.toml)")->required()->check(CLI::ExistingFile);
   study->add_option("--out", out_dir, "Output folder (default build/studies/<name>)");
   study->add_option("-j,--jobs", jobs, "Runs in parallel")->check(CLI::PositiveNumber);
+  bool fresh = false;
+  study->add_flag("--fresh", fresh, "Clear the cache of finished runs in the study folder first (run everything again)");
 
   std::string studies_dir = "build/studies", report_dir = "build/report";
   auto* rep = app.add_subcommand("report", "Write the verification report (index.html, index.md) from study results");
@@ -130,13 +158,20 @@ int main(int argc, char** argv) {
   rep->add_option("--out", report_dir, "Report folder");
 
   CLI11_PARSE(app, argc, argv);
+  dem::install_interrupt_handlers();  // SIGINT / SIGTERM: runs stop at the next step and write everything
+  std::signal(SIGXFSZ, SIG_IGN);      // a file size limit makes writes fail (reported, exit 4) instead of killing
   try {
-    if (*run) return cmd_run(case_file, sets, out_dir, quiet);
+    if (*run) {
+      run_opt.restart = !restart.empty() ? restart : start_from;
+      run_opt.restart_other_case = !start_from.empty();
+      return cmd_run(case_file, sets, out_dir, quiet, run_opt);
+    }
     if (*check) return cmd_check(case_file, sets);
     if (*study) {
       ver::StudyOptions o;
       o.out_dir = out_dir;
       o.jobs = jobs;
+      o.use_cache = !fresh;
       const ver::StudyResult r = ver::run_study(study_file, o);
       return r.passed ? 0 : 1;
     }
@@ -155,6 +190,12 @@ int main(int argc, char** argv) {
   } catch (const dem::CaseError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;
+  } catch (const dem::OutputError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 4;
+  } catch (const ver::StudyInterrupted& e) {
+    fmt::print(stderr, "interrupted: {} (finished runs are cached; run the study again to continue)\n", e.what());
+    return interrupted_exit();
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;

@@ -41,6 +41,7 @@ void remove_old_figures(const fs::path& figures_dir) {
 void write_text(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
+  out.close();  // a full disk shows only when the buffer is written out
   if (!out) throw std::runtime_error("report: cannot write " + path.string());
 }
 

@@ -13,10 +13,19 @@ std::vector<StudyResult> read_study_results(const std::filesystem::path& studies
   for (const auto& entry : std::filesystem::directory_iterator(studies_dir)) {
     if (!entry.is_directory()) continue;
     const auto path = entry.path() / "result.json";
-    if (!std::filesystem::is_regular_file(path)) continue;
     StudyResult study;
     study.folder = entry.path().filename().string();
     study.path = path;
+    if (!std::filesystem::is_regular_file(path)) {
+      // A study that was started but has no result (killed, or still running) is listed, never
+      // replaced by an older result: `dem2d study` removes result.json before it starts.
+      if (std::filesystem::is_regular_file(entry.path() / "running.json")) {
+        study.read_error = "no result.json: the study was interrupted or is still running";
+        std::cerr << "report: warning: " << entry.path().string() << ": " << study.read_error << "\n";
+        studies.push_back(std::move(study));
+      }
+      continue;
+    }
     std::ifstream in(path, std::ios::binary);
     std::stringstream buffer;
     if (in) buffer << in.rdbuf();

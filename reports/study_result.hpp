@@ -18,7 +18,8 @@ struct StudyResult {
   bool readable() const { return read_error.empty(); }
 };
 
-// Every <studies_dir>/*/result.json, sorted by folder name; folders without one are skipped.
+// Every <studies_dir>/*/result.json, sorted by folder name; folders without one are skipped, unless
+// they hold running.json (a study started and not finished): then read_error says so.
 // Unparsable files are returned with read_error set (and a warning on stderr).
 std::vector<StudyResult> read_study_results(const std::filesystem::path& studies_dir);
 

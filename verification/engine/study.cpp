@@ -18,6 +18,8 @@
 #include "dem/run/run.hpp"
 #include "dem/cases/text.hpp"
 #include "dem/cases/units.hpp"
+#include "dem/run/interrupt.hpp"
+#include "dem/run/output_files.hpp"
 #include "engine/convergence.hpp"
 #include "ref/registry.hpp"
 
@@ -88,6 +90,11 @@ struct Study {
   throw std::runtime_error(fmt::format("{}: {}: {}", s.file.string(), key, what));
 }
 
+/// The same, with the line of the offending node.
+[[noreturn]] void fail_at(const Study& s, const toml::node& n, const std::string& key, const std::string& what) {
+  throw std::runtime_error(fmt::format("{}:{}: {}: {}", s.file.string(), n.source().begin.line, key, what));
+}
+
 double number_or_quantity(const Study& s, const toml::node& n, const std::string& key) {
   if (auto d = n.value<double>()) return *d;
   if (auto str = n.value_exact<std::string>()) {
@@ -137,6 +144,11 @@ Study read_study(const fs::path& file) {
   const toml::table* st = root["study"].as_table();
   if (!st) fail(s, "study", "missing [study] table");
   s.name = (*st)["name"].value_or(fs::absolute(file).parent_path().filename().string());
+  // The name becomes a folder under build/studies: one plain path component, nothing else.
+  if (s.name.empty() || s.name == "." || s.name == ".." ||
+      s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") != std::string::npos)
+    fail_at(s, st->get("name") ? *st->get("name") : static_cast<const toml::node&>(*st), "study.name",
+            fmt::format("expected a plain folder name (letters, digits, '_', '-', '.'), got \"{}\"", s.name));
   s.title = (*st)["title"].value_or(s.name);
   s.requirement = (*st)["requirement"].value_or(std::string());
   s.reference_text = (*st)["reference"].value_or(std::string());
@@ -155,10 +167,12 @@ Study read_study(const fs::path& file) {
       else if (auto y = v.value_exact<std::string>()) s.setup[std::string(k.str())] = *y;
     }
   }
+  if (root.get("variant") && !root["variant"].as_array())
+    fail_at(s, *root.get("variant"), "variant", "expected [[variant]] tables");
   if (const toml::array* va = root["variant"].as_array()) {
     for (const auto& n : *va) {
       const toml::table* t = n.as_table();
-      if (!t) fail(s, "variant", "expected [[variant]] tables");
+      if (!t) fail_at(s, n, "variant", "expected [[variant]] tables");
       Variant v;
       v.label = (*t)["label"].value_or(std::string());
       v.set = strings(s, *t, "set");
@@ -222,10 +236,13 @@ Study read_study(const fs::path& file) {
     s.wall_contact = static_cast<int>((*r)["wall_contact"].value_or(int64_t{1}));
     if (s.blocks.empty() || !(s.radius > 0.0)) fail(s, "mode_map", "need blocks and radius");
   }
+  if (root.get("check") && !root["check"].as_array())
+    fail_at(s, *root.get("check"), "check", "expected [[check]] tables");
   const toml::array* ca = root["check"].as_array();
   if (!ca || ca->empty()) fail(s, "check", "missing: at least one [[check]]");
   for (const auto& n : *ca) {
     const toml::table* t = n.as_table();
+    if (!t) fail_at(s, n, "check", "expected [[check]] tables (a table per check), got a value");
     Check c;
     c.probe = (*t)["probe"].value_or(std::string(s.kind == Kind::stability ? "limit" : s.kind == Kind::mode_map ? "mismatches" : ""));
     if (c.probe.empty()) fail(s, "check.probe", "missing: the probe of the case to check");
@@ -256,10 +273,12 @@ Study read_study(const fs::path& file) {
     c.compare_richardson = cmp == "richardson";
     s.checks.push_back(c);
   }
+  if (root.get("figure") && !root["figure"].as_array())
+    fail_at(s, *root.get("figure"), "figure", "expected [[figure]] tables");
   if (const toml::array* fa = root["figure"].as_array()) {
     for (const auto& n : *fa) {
       const toml::table* t = n.as_table();
-      if (!t) fail(s, "figure", "expected [[figure]] tables");
+      if (!t) fail_at(s, n, "figure", "expected [[figure]] tables");
       Figure f;
       f.id = (*t)["id"].value_or(fmt::format("figure{}", s.figures.size()));
       f.title = (*t)["title"].value_or(f.id);
@@ -292,11 +311,74 @@ struct RunOut {
   double eps = 0.0;
 };
 
+/// FNV-1a 64.
+std::uint64_t fnv1a(std::string_view text, std::uint64_t h = 1469598103934665603ull) {
+  for (unsigned char ch : text) {
+    h ^= ch;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+/// The code version as a cache key: the recorded version (git describe) and a hash of this executable,
+/// so that a rebuilt, uncommitted change never reuses results of the old code.
+const std::string& code_identity() {
+  static const std::string id = [] {
+    std::string exe;
+    try {
+      exe = dem::read_file("/proc/self/exe");
+    } catch (const std::exception&) {
+    }
+    return fmt::format("{}+{:016x}", dem::provenance()["code_version"].get<std::string>(), fnv1a(exe));
+  }();
+  return id;
+}
+
+/// Finished runs of a study, one small JSON file per run in <study folder>/cache/, keyed by a hash of
+/// the resolved case (the case file's content after the overrides), the overrides, the run folder
+/// and the code identity. A killed study reuses them; `--fresh` ignores them.
+struct RunCache {
+  fs::path dir;  // empty: no cache
+  std::atomic<int> reused{0}, ran{0};
+};
+
+RunCache* g_cache = nullptr;  // the cache of the study being run (run_study sets it)
+
 RunOut run_one(const Study& s, const std::vector<std::string>& sets, const fs::path& out = {}) {
   const dem::Case c = dem::read_case(s.root / s.case_path, sets);
+  fs::path entry;
+  if (g_cache && !g_cache->dir.empty()) {
+    std::string key = code_identity() + "\n" + c.resolved.dump() + "\n" + out.string();
+    for (const auto& x : sets) key += "\n" + x;
+    entry = g_cache->dir / fmt::format("{:016x}.json", fnv1a(key));
+    const bool files_ok = out.empty() || (fs::exists(out / "series.csv") && fs::exists(out / "summary.json"));
+    if (files_ok && fs::exists(entry)) {
+      try {
+        const nlohmann::json j = nlohmann::json::parse(dem::read_file(entry));
+        RunOut r{{}, j.at("status").get<std::string>(), j.at("message").get<std::string>(), j.at("eps").get<double>()};
+        for (const auto& [k, v] : j.at("probes").items())
+          r.probes[k] = v.is_null() ? std::nullopt : std::optional<double>(v.get<double>());
+        ++g_cache->reused;
+        return r;
+      } catch (const std::exception&) {
+        // an unreadable entry: run again
+      }
+    }
+  }
   dem::RunOptions o;  // files only for runs that feed a figure
   o.out_dir = out;
   const dem::RunResult r = dem::run_case(c, o);
+  if (r.status == "interrupted") throw StudyInterrupted(fmt::format("study {}: {}", s.name, r.message));
+  if (!entry.empty()) {
+    nlohmann::json probes = nlohmann::json::object();
+    for (const auto& [k, v] : r.probes) probes[k] = v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+    dem::write_file_atomic(entry, nlohmann::json{{"status", r.status}, {"message", r.message},
+                                                 {"eps", r.element_steps_per_second}, {"probes", probes},
+                                                 {"case", c.path.string()}, {"overrides", sets},
+                                                 {"code", code_identity()}, {"provenance", dem::provenance()}}
+                                      .dump() + "\n", false);
+    ++g_cache->ran;
+  }
   return {r.probes, r.status, r.message, r.element_steps_per_second};
 }
 
@@ -330,6 +412,19 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   const Study s = read_study(file);
   const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
   fs::create_directories(out);
+  // Never a stale result: the old result.json goes first; running.json marks a study under way (or
+  // killed) until the new result.json is renamed into place.
+  fs::remove(out / "result.json");
+  dem::write_file_atomic(out / "running.json", nlohmann::json{{"study", s.name}, {"status", "running"},
+                                                              {"provenance", dem::provenance()}}.dump(2) + "\n");
+  RunCache cache;
+  cache.dir = out / "cache";
+  if (!opt.use_cache) fs::remove_all(cache.dir);  // --fresh: forget earlier runs, record the new ones
+  fs::create_directories(cache.dir);
+  g_cache = &cache;
+  struct Reset {
+    ~Reset() { g_cache = nullptr; }
+  } reset;
 
   nlohmann::json checks = nlohmann::json::array(), series_json = nlohmann::json::array();
   bool passed = true;
@@ -420,7 +515,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       speed_sum += r.eps;
       ++speed_n;
     }
-    std::ofstream csv(out / "levels.csv");
+    std::ostringstream csv;
     csv << "variant,level,parameter,status";
     for (const auto& c : s.checks) csv << "," << c.probe;
     csv << "\n";
@@ -430,6 +525,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       for (const auto& c : s.checks) csv << "," << fmt_value(runs[k].probes.count(c.probe) ? runs[k].probes[c.probe] : std::nullopt);
       csv << "\n";
     }
+    dem::write_file_atomic(out / "levels.csv", csv.str(), false);
     for (const Check& c : s.checks) {
       for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
         const Variant& v = s.variants[vi];
@@ -665,7 +761,10 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       {"case", s.case_path}, {"parameter", s.parameter}, {"reference", s.reference_text}, {"setup", setup},
       {"provenance", prov}, {"passed", passed}, {"checks", checks}, {"series", series_json},
       {"figures", figures}, {"tables", s_tables}};
-  std::ofstream(out / "result.json") << result.dump(2) << "\n";
+  result["provenance"]["runs_reused"] = cache.reused.load();
+  result["provenance"]["runs_run"] = cache.ran.load();
+  dem::write_file_atomic(out / "result.json", result.dump(2) + "\n");
+  fs::remove(out / "running.json");
 
   if (opt.print) {
     fmt::print("study {}: {}\n", s.name, s.title);

@@ -55,6 +55,7 @@ class Simulation {
   const BasePlateTravel& plate_travel() const { return plate_travel_; }
 
  private:
+  friend struct SimulationAccess;  // checkpoints (run/checkpoint.cpp) save and restore the whole state
   void rebuild();
   void apply_preloads();
   bool needs_rebuild() const;

@@ -1,18 +1,20 @@
 #include "dem/run/run.hpp"
 
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <ctime>
-#include <fstream>
 #include <limits>
 #include <unistd.h>
 
 #include <fmt/format.h>
-#include <fmt/os.h>
 
 #include "dem/run/quantities.hpp"
 #include "dem/cases/text.hpp"
 #include "dem/core/simulation.hpp"
+#include "dem/run/checkpoint.hpp"
+#include "dem/run/interrupt.hpp"
+#include "dem/run/output_files.hpp"
 #include "dem/run/vtk_writer.hpp"
 
 #include "dem2d_version.hpp"  // generated at build time: DEM2D_VERSION
@@ -69,10 +71,50 @@ Vec2 body_velocity(const Simulation& s, std::uint32_t j, bool wall) {
 
 bool is_tty() { return isatty(STDERR_FILENO) != 0; }
 
+// The run loop's own state, for checkpoints: the energy bound, then per probe its accumulators.
+constexpr std::size_t kProbeNumbers = 16;
+std::vector<double> loop_state(double energy_limit, double potential0, const std::vector<ProbeState>& probes) {
+  std::vector<double> v{energy_limit, potential0};
+  for (const ProbeState& p : probes) {
+    v.insert(v.end(), {p.prev_t, p.prev_v, p.value ? 1.0 : 0.0, p.value.value_or(0.0), p.extreme,
+                       p.have_extreme ? 1.0 : 0.0, p.st, p.sq, p.stt, p.stq, p.sn, p.n0.x, p.n0.y, p.vn0,
+                       static_cast<double>(p.force_steps), p.in_contact ? 1.0 : 0.0});
+  }
+  return v;
+}
+void restore_loop_state(const std::vector<double>& v, double& energy_limit, double& potential0,
+                        std::vector<ProbeState>& probes) {
+  if (v.size() != 2 + kProbeNumbers * probes.size())
+    throw CaseError("restart: the checkpoint's run state does not match the case's probes");
+  energy_limit = v[0];
+  potential0 = v[1];
+  const double* x = v.data() + 2;
+  for (ProbeState& p : probes) {
+    p.prev_t = x[0], p.prev_v = x[1];
+    if (x[2] != 0.0) p.value = x[3];
+    else p.value.reset();
+    p.extreme = x[4], p.have_extreme = x[5] != 0.0;
+    p.st = x[6], p.sq = x[7], p.stt = x[8], p.stq = x[9], p.sn = x[10];
+    p.n0 = {x[11], x[12]}, p.vn0 = x[13];
+    p.force_steps = static_cast<std::int64_t>(x[14]), p.in_contact = x[15] != 0.0;
+    x += kProbeNumbers;
+  }
+}
+
 }  // namespace
 
 RunResult run_case(const Case& c, const RunOptions& opt) {
   const double limit = check_case(c);  // throws CaseError before anything runs
+  // A restart reads its checkpoint first (it may lie in the output folder, which is cleared below).
+  std::optional<Checkpoint> restart;
+  if (!opt.restart.empty()) {
+    restart = read_checkpoint(opt.restart);
+    if (!opt.restart_other_case && restart->case_hash != case_hash(c))
+      throw CaseError(fmt::format("{}: --restart {}: the checkpoint belongs to another case ({}, case hash {}, this "
+                                  "case {}); to start this case from it, use --start-from",
+                                  c.path.string(), opt.restart.string(), restart->case_path, restart->case_hash,
+                                  case_hash(c)));
+  }
   Simulation sim(c.model);
   const Model& m = sim.model();
   const std::int64_t total_steps = std::llround(std::ceil(m.numerics.duration / m.numerics.dt - 1e-9));
@@ -105,25 +147,57 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
     }
     probes.push_back(s);
   }
-  std::ofstream csv;
+  // The run's state from a checkpoint: the Simulation's, and the loop's (probes, energy bound).
+  double energy_limit = m.numerics.energy_limit;
+  double potential0 = sim.energies().potential;  // the blow-up criterion's zero of potential energy
+  if (restart) {
+    restore_simulation(sim, *restart, opt.restart_other_case);
+    if (opt.restart_other_case) potential0 = sim.energies().potential;
+    else restore_loop_state(restart->loop, energy_limit, potential0, probes);
+  }
+  const std::int64_t first_step = sim.steps();
+
+  // Outputs: a cleared folder (never two runs mixed), summary.json saying "running" until the end,
+  // the series as series.csv.partial until it is complete; every write checked (OutputError).
+  StreamedFile csv;
   std::vector<std::pair<double, std::string>> snapshots;
+  const std::filesystem::path checkpoint_file = write ? opt.out_dir / "checkpoint.bin" : std::filesystem::path();
   if (write) {
-    std::filesystem::create_directories(opt.out_dir);
+    prepare_run_folder(opt.out_dir);
+    write_file_atomic(opt.out_dir / "summary.json",
+                      nlohmann::json{{"case", c.path.string()}, {"overrides", c.overrides}, {"provenance", provenance()},
+                                     {"status", "running"}, {"case_hash", case_hash(c)}}
+                              .dump(2) + "\n");
     if (!series.empty()) {
       csv.open(opt.out_dir / "series.csv");
-      csv << "# case: " << c.path.string() << ", code " << provenance()["code_version"].get<std::string>() << "\n";
-      for (std::size_t k = 0; k < series.size(); ++k) csv << (k ? "," : "") << csv_field(c.output.series[k]);
-      csv << "\n";
+      std::string head = "# case: " + c.path.string() + ", code " + provenance()["code_version"].get<std::string>() + "\n";
+      for (std::size_t k = 0; k < series.size(); ++k) head += (k ? "," : "") + csv_field(c.output.series[k]);
+      csv.write(head + "\n");
     }
     if (c.output.vtk) std::filesystem::create_directories(opt.out_dir / "vtk");
   }
+  std::string row;
+  std::int64_t row_step = -1, snapshot_step = -1;  // the step of the last row / snapshot written
   auto write_row = [&] {
     if (!csv.is_open()) return;
-    for (std::size_t k = 0; k < series.size(); ++k) csv << (k ? "," : "") << fmt::format("{:.17g}", series[k](sim));
-    csv << "\n";
+    row_step = sim.steps();
+    row.clear();
+    for (std::size_t k = 0; k < series.size(); ++k) {
+      if (k) row += ',';
+      row += fmt::format("{:.17g}", series[k](sim));
+    }
+    row += '\n';
+    csv.write(row);
+  };
+  std::optional<std::int64_t> checkpoint_step;
+  auto checkpoint = [&] {
+    if (!write) return;
+    write_checkpoint(checkpoint_file, sim, c, loop_state(energy_limit, potential0, probes));
+    checkpoint_step = sim.steps();
   };
   auto snapshot = [&] {
     if (!write || !c.output.vtk) return;
+    snapshot_step = sim.steps();
     const std::string name = fmt::format("snapshot_{:09d}.vtp", sim.steps());
     write_vtp(opt.out_dir / "vtk" / name, sim);
     snapshots.emplace_back(sim.time(), "vtk/" + name);
@@ -134,7 +208,6 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   // Blow-up criterion: the mechanical energy may not exceed a bound far above what the state after
   // the first step (when the initial contacts carry their forces) and gravity over the extent of the
   // assembly can supply.
-  double energy_limit = m.numerics.energy_limit;
   double mg_extent = 0.0;
   {
     double mg = 0.0, xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
@@ -147,7 +220,6 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
     }
     mg_extent = mg * (std::hypot(xmax - xmin, ymax - ymin) + 1.0);
   }
-  const double potential0 = sim.energies().potential;
 
   RunResult res;
   res.stability_limit = limit;
@@ -156,9 +228,9 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   auto last_print = t0;
   const std::int64_t check_every = 64;
-  for (std::int64_t k = 0; k < total_steps; ++k) {
+  for (std::int64_t k = first_step; k < total_steps; ++k) {
     sim.step();
-    if (k == 0 && energy_limit <= 0.0) {
+    if (k == first_step && energy_limit <= 0.0) {
       const Energies e1 = sim.energies();
       energy_limit = 1e3 * (e1.kinetic + e1.elastic + mg_extent) + 1e-300;
     }
@@ -226,11 +298,22 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
         }
       }
     }
+    // Checkpoints, and SIGINT / SIGTERM (or the test hook): stop here and write everything.
+    if (opt.checkpoint_every > 0 && sim.steps() % opt.checkpoint_every == 0 && !last) checkpoint();
+    const int sig = interrupt_signal();
+    if (sig != 0 || (opt.interrupt_at_step > 0 && sim.steps() == opt.interrupt_at_step)) {
+      res.status = "interrupted";
+      res.message = fmt::format("stopped at t = {:.6g} s (step {}) by {}", sim.time(), sim.steps(),
+                                sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : sig ? fmt::format("signal {}", sig) : "request");
+      break;
+    }
   }
   if (show) fmt::print(stderr, "\r{:70s}\r", "");
   const auto t1 = std::chrono::steady_clock::now();
-  write_row();
-  snapshot();
+  // The final row and snapshot (an interrupted run does not repeat the ones of its last step).
+  const bool interrupted = res.status == "interrupted";
+  if (!(interrupted && row_step == sim.steps())) write_row();
+  if (!(interrupted && snapshot_step == sim.steps())) snapshot();
 
   res.steps = sim.steps();
   res.time = sim.time();
@@ -292,9 +375,17 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       {"probes", probes_json},
       {"resolved_case", c.resolved},
   };
+  res.summary["case_hash"] = case_hash(c);
+  if (restart)
+    res.summary["restart"] = {{"checkpoint", opt.restart.string()}, {"from_case", restart->case_path},
+                              {"step", restart->step}, {"time", restart->time}, {"other_case", opt.restart_other_case},
+                              {"checkpoint_written_by", restart->meta}};
   if (write) {
-    std::ofstream(opt.out_dir / "summary.json") << res.summary.dump(2) << "\n";
+    if (res.status == "interrupted" || opt.checkpoint_at_end) checkpoint();
+    if (checkpoint_step) res.summary["checkpoint"] = {{"file", "checkpoint.bin"}, {"step", *checkpoint_step}};
+    csv.commit();
     if (c.output.vtk) write_pvd(opt.out_dir / "snapshots.pvd", snapshots);
+    write_file_atomic(opt.out_dir / "summary.json", res.summary.dump(2) + "\n");
   }
   return res;
 }

@@ -1,7 +1,8 @@
 #pragma once
 // Running a case: the step loop with outputs (time-series CSV, JSON summary, VTK snapshots), probes,
 // stop criteria, progress on a terminal, and blow-up detection (NaN or runaway energy stops the run
-// with a message, keeping what was written).
+// with a message, keeping what was written). Outputs are crash-safe (output_files.hpp), interruptible
+// (interrupt.hpp) and restartable bit for bit (checkpoint.hpp).
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -14,12 +15,19 @@
 namespace dem {
 
 struct RunOptions {
-  std::filesystem::path out_dir;  // empty: write nothing (studies that only need probes)
+  std::filesystem::path out_dir;  // empty: write nothing (studies that only need probes); cleared first
   bool progress = false;          // show progress (only when stderr is a terminal)
+  // Checkpoints (checkpoint.hpp), written to <out_dir>/checkpoint.bin (replaced each time): every this
+  // many steps (0: never), at the end, and always when the run is interrupted (SIGINT / SIGTERM).
+  std::int64_t checkpoint_every = 0;
+  bool checkpoint_at_end = false;
+  std::filesystem::path restart;     // continue from this checkpoint (of the same case, unless:)
+  bool restart_other_case = false;   //   the checkpoint is the start of this (other) case
+  std::int64_t interrupt_at_step = 0;  // tests: behave as if SIGTERM arrived after this step (0: no)
 };
 
 struct RunResult {
-  std::string status;   // "completed", "settled", "blow-up"
+  std::string status;   // "completed", "settled", "blow-up", "interrupted" (SIGINT / SIGTERM)
   std::string message;  // what happened, for a blow-up
   std::int64_t steps = 0;
   double time = 0.0;                 // simulated [s]
@@ -33,6 +41,8 @@ struct RunResult {
 /// The code version, build type and the like, recorded in every result file.
 nlohmann::json provenance();
 
+/// Runs a case. Throws CaseError for a wrong case or a checkpoint that does not fit it, OutputError
+/// (output_files.hpp) when a result file cannot be written.
 RunResult run_case(const Case& c, const RunOptions& opt);
 
 }  // namespace dem

@@ -1,11 +1,27 @@
 #include "dem/run/vtk_writer.hpp"
 
-#include <fstream>
+#include <iterator>
+#include <string_view>
 
 #include <fmt/format.h>
-#include <fmt/os.h>
+
+#include "dem/run/output_files.hpp"
 
 namespace dem {
+
+namespace {
+
+/// The file's text, built in memory and written whole (write_file_atomic: checked, renamed into place).
+struct Text {
+  fmt::memory_buffer buf;
+  template <class... Args>
+  void print(fmt::format_string<Args...> f, Args&&... args) {
+    fmt::format_to(std::back_inserter(buf), f, std::forward<Args>(args)...);
+  }
+  std::string_view view() const { return {buf.data(), buf.size()}; }
+};
+
+}  // namespace
 
 void write_vtp(const std::filesystem::path& file, const Simulation& sim) {
   const Elements& e = sim.model().elements;
@@ -18,7 +34,7 @@ void write_vtp(const std::filesystem::path& file, const Simulation& sim) {
   for (std::size_t k = 0; k < ids.size(); ++k) point_of[ids[k]] = k;
   std::size_t wall_points = 0;
   for (const auto& c : contacts) wall_points += c.wall;
-  auto out = fmt::output_file(file.string());
+  Text out;
   out.print("<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n<PolyData>\n");
   out.print("<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"{}\">\n", ids.size() + wall_points,
             ids.size(), contacts.size());
@@ -63,13 +79,15 @@ void write_vtp(const std::filesystem::path& file, const Simulation& sim) {
   out.print("</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
   for (std::size_t k = 0; k < contacts.size(); ++k) out.print("{}\n", 2 * (k + 1));
   out.print("</DataArray></Lines>\n</Piece>\n</PolyData>\n</VTKFile>\n");
+  write_file_atomic(file, out.view(), false);
 }
 
 void write_pvd(const std::filesystem::path& file, const std::vector<std::pair<double, std::string>>& snapshots) {
-  auto out = fmt::output_file(file.string());
+  Text out;
   out.print("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n");
   for (const auto& [t, name] : snapshots) out.print("<DataSet timestep=\"{:.9g}\" file=\"{}\"/>\n", t, name);
   out.print("</Collection>\n</VTKFile>\n");
+  write_file_atomic(file, out.view(), false);
 }
 
 }  // namespace dem

@@ -1,0 +1,265 @@
+#include "dem/run/checkpoint.hpp"
+
+#include <bit>
+#include <cstring>
+#include <type_traits>
+
+#include <fmt/format.h>
+
+#include "dem/run/output_files.hpp"
+#include "dem/run/run.hpp"
+
+namespace dem {
+
+namespace {
+
+constexpr char kMagic[] = "DEM2D-CHECKPOINT\n";
+
+// A new field in one of these types must be added to write_state / read_state below; these
+// assertions fail the build until it is (the sizes are those of the fields listed there).
+static_assert(sizeof(LinearSlot) == 88, "LinearSlot changed: add the new field to the checkpoint (checkpoint.cpp)");
+static_assert(sizeof(SegmentState) == 32 && sizeof(FaceConstants) == 48 && sizeof(FaceForce) == 32 &&
+                  sizeof(FaceHistory) == 24 + 32 * kMaxSegments &&
+                  sizeof(FaceSlot) == 16 + 48 + sizeof(FaceHistory) + 32 + 16,
+              "FaceSlot changed: add the new field to the checkpoint (checkpoint.cpp)");
+static_assert(sizeof(Elements) == 23 * sizeof(std::vector<double>),
+              "Elements changed: add the new field to the checkpoint (checkpoint.cpp)");
+static_assert(sizeof(Wall) == sizeof(std::string) + 80, "Wall changed: add the new field to the checkpoint (checkpoint.cpp)");
+
+std::uint64_t fnv1a(std::string_view s, std::uint64_t h = 1469598103934665603ull) {
+  for (unsigned char ch : s) {
+    h ^= ch;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+struct Writer {
+  std::string out;
+  template <class T>
+  void put(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void put_str(std::string_view s) {
+    put<std::uint64_t>(s.size());
+    out.append(s);
+  }
+  template <class T>
+  void put_vec(const std::vector<T>& v) {
+    put<std::uint64_t>(v.size());
+    for (const T& x : v) put(x);
+  }
+};
+
+struct Reader {
+  std::string_view in;
+  std::size_t pos = 0;
+  std::string what;  // for errors
+  template <class T>
+  T get() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    if (pos + sizeof(T) > in.size()) throw OutputError(fmt::format("{}: truncated checkpoint", what));
+    T v;
+    std::memcpy(&v, in.data() + pos, sizeof v);
+    pos += sizeof v;
+    return v;
+  }
+  std::string get_str() {
+    const auto n = get<std::uint64_t>();
+    if (n > in.size() - pos) throw OutputError(fmt::format("{}: truncated checkpoint", what));
+    std::string s(in.substr(pos, n));
+    pos += n;
+    return s;
+  }
+  template <class T>
+  void get_vec(std::vector<T>& v) {
+    const auto n = get<std::uint64_t>();
+    if (n > (in.size() - pos) / sizeof(T)) throw OutputError(fmt::format("{}: truncated checkpoint", what));
+    v.resize(n);
+    for (T& x : v) x = get<T>();
+  }
+};
+
+void put_slot(Writer& w, const LinearSlot& s) {
+  w.put(s.i), w.put(s.j), w.put(s.law), w.put(s.touching), w.put(s.eta_n), w.put(s.eta_s);
+  w.put(s.h.en), w.put(s.h.es), w.put(s.f.fn), w.put(s.f.fs), w.put(s.f.opened), w.put(s.nx), w.put(s.ny);
+}
+void get_slot(Reader& r, LinearSlot& s) {
+  s.i = r.get<std::uint32_t>(), s.j = r.get<std::uint32_t>(), s.law = r.get<std::int32_t>();
+  s.touching = r.get<std::uint8_t>(), s.eta_n = r.get<double>(), s.eta_s = r.get<double>();
+  s.h.en = r.get<double>(), s.h.es = r.get<double>(), s.f.fn = r.get<double>(), s.f.fs = r.get<double>();
+  s.f.opened = r.get<bool>(), s.nx = r.get<double>(), s.ny = r.get<double>();
+}
+void put_slot(Writer& w, const FaceSlot& s) {
+  w.put(s.i), w.put(s.j), w.put(s.law), w.put(s.touching);
+  w.put(s.c.kn), w.put(s.c.ks), w.put(s.c.eta_n), w.put(s.c.eta_s), w.put(s.c.half_length), w.put(s.c.segment_area);
+  w.put(s.h.theta1), w.put(s.h.theta2), w.put(s.h.geometric_start);
+  for (const SegmentState& g : s.h.seg) w.put(g.u), w.put(g.pe), w.put(g.qe), w.put(g.linked), w.put(g.intact);
+  w.put(s.f.p), w.put(s.f.q), w.put(s.f.p_moment), w.put(s.f.links), w.put(s.f.any_tensile), w.put(s.nx), w.put(s.ny);
+}
+void get_slot(Reader& r, FaceSlot& s) {
+  s.i = r.get<std::uint32_t>(), s.j = r.get<std::uint32_t>(), s.law = r.get<std::int32_t>();
+  s.touching = r.get<std::uint8_t>();
+  s.c.kn = r.get<double>(), s.c.ks = r.get<double>(), s.c.eta_n = r.get<double>(), s.c.eta_s = r.get<double>();
+  s.c.half_length = r.get<double>(), s.c.segment_area = r.get<double>();
+  s.h.theta1 = r.get<double>(), s.h.theta2 = r.get<double>(), s.h.geometric_start = r.get<std::uint8_t>();
+  for (SegmentState& g : s.h.seg) {
+    g.u = r.get<double>(), g.pe = r.get<double>(), g.qe = r.get<double>();
+    g.linked = r.get<std::uint8_t>(), g.intact = r.get<std::uint8_t>();
+  }
+  s.f.p = r.get<double>(), s.f.q = r.get<double>(), s.f.p_moment = r.get<double>(), s.f.links = r.get<int>();
+  s.f.any_tensile = r.get<bool>(), s.nx = r.get<double>(), s.ny = r.get<double>();
+}
+template <class Slot>
+void put_slots(Writer& w, const std::vector<Slot>& v) {
+  w.put<std::uint64_t>(v.size());
+  for (const Slot& s : v) put_slot(w, s);
+}
+template <class Slot>
+void get_slots(Reader& r, std::vector<Slot>& v) {
+  const auto n = r.get<std::uint64_t>();
+  if (n > r.in.size()) throw OutputError(fmt::format("{}: truncated checkpoint", r.what));
+  v.assign(n, Slot{});
+  for (Slot& s : v) get_slot(r, s);
+}
+
+}  // namespace
+
+/// Friend of Simulation: reads and writes its private state.
+struct SimulationAccess {
+  static std::string write(const Simulation& sim) {
+    Writer w;
+    const Elements& e = sim.m_.elements;
+    w.put<std::uint64_t>(e.size());
+    for (const auto* v : {&e.x, &e.y, &e.phi, &e.dx, &e.dy, &e.dphi, &e.vx, &e.vy, &e.omega, &e.fx, &e.fy, &e.moment})
+      w.put_vec(*v);
+    w.put_vec(e.active);
+    w.put<std::uint64_t>(sim.m_.walls.size());
+    for (const Wall& wl : sim.m_.walls) w.put(wl.a), w.put(wl.b), w.put(wl.increment), w.put(wl.force);
+    w.put_vec(sim.candidates_);
+    put_slots(w, sim.linear_pairs_);
+    put_slots(w, sim.linear_walls_);
+    put_slots(w, sim.face_pairs_);
+    put_slots(w, sim.face_walls_);
+    w.put_vec(sim.x_ref_);
+    w.put_vec(sim.y_ref_);
+    w.put_vec(sim.wall_ref_);
+    w.put(sim.skin_), w.put(sim.time_), w.put(sim.step_), w.put(sim.rebuilds_), w.put(sim.preloading_);
+    return w.out;
+  }
+
+  static void read(Simulation& sim, const Checkpoint& ck, bool other_case) {
+    Reader r{ck.state, 0, ck.case_path};
+    Elements& e = sim.m_.elements;
+    const auto n = r.get<std::uint64_t>();
+    if (n != e.size())
+      throw CaseError(fmt::format("restart: the checkpoint has {} elements, the case {}", n, e.size()));
+    for (auto* v : {&e.x, &e.y, &e.phi, &e.dx, &e.dy, &e.dphi, &e.vx, &e.vy, &e.omega, &e.fx, &e.fy, &e.moment}) {
+      r.get_vec(*v);
+      if (v->size() != n) throw OutputError(fmt::format("{}: corrupt checkpoint (element arrays)", ck.case_path));
+    }
+    r.get_vec(e.active);
+    const auto nw = r.get<std::uint64_t>();
+    if (nw != sim.m_.walls.size())
+      throw CaseError(fmt::format("restart: the checkpoint has {} walls, the case {}", nw, sim.m_.walls.size()));
+    for (Wall& wl : sim.m_.walls) wl.a = r.get<Vec2>(), wl.b = r.get<Vec2>(), wl.increment = r.get<Vec2>(), wl.force = r.get<Vec2>();
+    r.get_vec(sim.candidates_);
+    get_slots(r, sim.linear_pairs_);
+    get_slots(r, sim.linear_walls_);
+    get_slots(r, sim.face_pairs_);
+    get_slots(r, sim.face_walls_);
+    r.get_vec(sim.x_ref_);
+    r.get_vec(sim.y_ref_);
+    r.get_vec(sim.wall_ref_);
+    sim.skin_ = r.get<double>(), sim.time_ = r.get<double>(), sim.step_ = r.get<std::int64_t>();
+    sim.rebuilds_ = r.get<std::int64_t>(), sim.preloading_ = r.get<bool>();
+    if (r.pos != r.in.size()) throw OutputError(fmt::format("{}: corrupt checkpoint (trailing state bytes)", ck.case_path));
+    if (!other_case) return;
+    // Another case: each slot takes the new case's law of its material pair, of the same kind.
+    const Model& m = sim.m_;
+    auto relaw = [&](auto& slots, bool wall, LawKind kind) {
+      for (auto& s : slots) {
+        const std::int32_t mj = wall ? m.walls[s.j].material : e.material[s.j];
+        const std::int32_t law = m.law_index(e.material[s.i], mj);
+        if (law < 0 || m.laws[static_cast<std::size_t>(law)].kind != kind)
+          throw CaseError(fmt::format("restart: element {} and {} {}: the new case has no {} contact law for this pair", s.i,
+                                      wall ? "wall" : "element", s.j, kind == LawKind::linear ? "linear" : "face"));
+        s.law = law;
+      }
+    };
+    relaw(sim.linear_pairs_, false, LawKind::linear);
+    relaw(sim.linear_walls_, true, LawKind::linear);
+    relaw(sim.face_pairs_, false, LawKind::face);
+    relaw(sim.face_walls_, true, LawKind::face);
+  }
+};
+
+std::string simulation_state(const Simulation& sim) { return SimulationAccess::write(sim); }
+
+std::string case_hash(const Case& c) {
+  nlohmann::json j = c.resolved;
+  if (j.is_object()) {
+    j.erase("output");
+    if (j.contains("numerics") && j["numerics"].is_object()) j["numerics"].erase("duration");
+  }
+  return fmt::format("{:016x}", fnv1a(j.dump()));
+}
+
+void write_checkpoint(const std::filesystem::path& file, const Simulation& sim, const Case& c,
+                      const std::vector<double>& loop) {
+  Writer w;
+  w.out.append(kMagic, sizeof kMagic - 1);
+  w.put(kCheckpointVersion);
+  w.put<std::uint32_t>(0x01020304u);
+  w.put_str(case_hash(c));
+  w.put_str(c.path.string());
+  w.put_str(nlohmann::json{{"case", c.path.string()}, {"overrides", c.overrides}, {"provenance", provenance()}}.dump());
+  w.put(sim.steps());
+  w.put(sim.time());
+  w.put(sim.dt());
+  w.put_str(SimulationAccess::write(sim));
+  w.put_vec(loop);
+  w.put(fnv1a(w.out));
+  write_file_atomic(file, w.out);
+}
+
+Checkpoint read_checkpoint(const std::filesystem::path& file) {
+  const std::string bytes = read_file(file);
+  const std::string what = file.string();
+  if (bytes.compare(0, sizeof kMagic - 1, kMagic) != 0)
+    throw OutputError(fmt::format("{}: not a dem2d checkpoint", what));
+  if (bytes.size() < sizeof kMagic - 1 + 8 + 8) throw OutputError(fmt::format("{}: truncated checkpoint", what));
+  Reader r{bytes, sizeof kMagic - 1, what};
+  const auto version = r.get<std::uint32_t>();
+  if (version != kCheckpointVersion)
+    throw OutputError(fmt::format("{}: checkpoint format version {}, this dem2d reads version {}", what, version, kCheckpointVersion));
+  if (r.get<std::uint32_t>() != 0x01020304u) throw OutputError(fmt::format("{}: checkpoint written with another byte order", what));
+  std::uint64_t sum;
+  std::memcpy(&sum, bytes.data() + bytes.size() - 8, 8);
+  if (sum != fnv1a(std::string_view(bytes).substr(0, bytes.size() - 8)))
+    throw OutputError(fmt::format("{}: checkpoint checksum mismatch (the file is damaged)", what));
+  r.in = std::string_view(bytes).substr(0, bytes.size() - 8);
+  Checkpoint ck;
+  ck.case_hash = r.get_str();
+  ck.case_path = r.get_str();
+  try {
+    ck.meta = nlohmann::json::parse(r.get_str());
+  } catch (const nlohmann::json::exception&) {
+    throw OutputError(fmt::format("{}: corrupt checkpoint (meta)", what));
+  }
+  ck.step = r.get<std::int64_t>();
+  ck.time = r.get<double>();
+  ck.dt = r.get<double>();
+  ck.state = r.get_str();
+  r.get_vec(ck.loop);
+  return ck;
+}
+
+void restore_simulation(Simulation& sim, const Checkpoint& ck, bool other_case) {
+  if (ck.dt != sim.dt())
+    throw CaseError(fmt::format("restart: the checkpoint was written with dt = {:.17g} s, the case has dt = {:.17g} s", ck.dt, sim.dt()));
+  SimulationAccess::read(sim, ck, other_case);
+}
+
+}  // namespace dem

@@ -1,0 +1,148 @@
+// The study runner and the report facing broken inputs and killed studies (verification/engine/
+// study.hpp, reports/study_result.hpp): a malformed study.toml gets a located error, a study name
+// cannot leave the output folder, a killed study leaves no stale result.json and continues from its
+// cache of finished runs, a broken or incomplete study is listed as such while the others are read.
+#include <catch2/catch.hpp>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "dem/run/interrupt.hpp"
+#include "engine/study.hpp"
+#include "study_result.hpp"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+
+namespace {
+
+fs::path source(const std::string& rel) { return fs::path(DEM2D_SOURCE_DIR) / rel; }
+
+fs::path fresh_dir(const std::string& name) {
+  const auto d = fs::temp_directory_path() / "dem2d_unit_study" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+/// A copy of verification/rest_on_wall/study.toml (a quick two-run study) with `edit` applied, placed
+/// in verification/<folder>/ of a temporary tree whose cases/ points to the real case.
+/// `replace` is replaced at every occurrence; `prefix` goes before the first line (root keys).
+fs::path study_copy(const std::string& folder, const std::string& replace = {}, const std::string& with = {},
+                    const std::string& prefix = {}) {
+  const fs::path root = fresh_dir("tree_" + folder);
+  fs::create_directories(root / "verification" / folder);
+  fs::create_directories(root / "cases" / "basic");
+  fs::copy_file(source("cases/basic/rest_on_wall.toml"), root / "cases/basic/rest_on_wall.toml");
+  std::ifstream in(source("verification/rest_on_wall/study.toml"));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  if (!replace.empty()) {
+    REQUIRE(text.find(replace) != std::string::npos);
+    for (auto at = text.find(replace); at != std::string::npos; at = text.find(replace, at + with.size()))
+      text.replace(at, replace.size(), with);
+  }
+  text = prefix + text;
+  const fs::path file = root / "verification" / folder / "study.toml";
+  std::ofstream(file) << text;
+  return file;
+}
+
+/// The [study] header followed by a name line.
+std::string fmt_name(const std::string& name) { return "[study]\nname = \"" + name + "\"\n"; }
+
+ver::StudyOptions quiet(const fs::path& out) {
+  ver::StudyOptions o;
+  o.out_dir = out;
+  o.jobs = 1;
+  o.print = false;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("A malformed study file gets a located error, not a crash", "[study]") {
+  // check = [1] (an array of numbers) instead of [[check]] tables: used to dereference a null table.
+  const fs::path f = study_copy("bad_check", "[[check]]", "[other_check]", "check = [1]\n");
+  const fs::path out = fresh_dir("bad_check_out");
+  CHECK_THROWS_WITH(ver::run_study(f, quiet(out)), Contains("study.toml:1: check: expected [[check]] tables"));
+  // variant = [2]: an array that holds no table.
+  const fs::path g = study_copy("bad_variant", "[[variant]]", "[[other_variant]]", "variant = [2]\n");
+  CHECK_THROWS_WITH(ver::run_study(g, quiet(out)), Contains("study.toml:1: variant: expected [[variant]] tables"));
+  // check = 3: not an array at all.
+  const fs::path h = study_copy("bad_check3", "[[check]]", "[other_check]", "check = 3\n");
+  CHECK_THROWS_WITH(ver::run_study(h, quiet(out)), Contains("study.toml:1: check: expected [[check]] tables"));
+}
+
+TEST_CASE("A study name cannot write outside the output folder", "[study]") {
+  // From a scratch working directory, so that a broken guard writes only below it.
+  const fs::path cwd = fs::current_path(), scratch = fresh_dir("bad_name_cwd") / "x" / "y";
+  fs::create_directories(scratch);
+  fs::current_path(scratch);
+  for (const char* name : {"../escape", "a/b", "..", "/tmp/dem2d_unit_study/abs"}) {
+    INFO(name);
+    const fs::path f = study_copy("bad_name", "[study]\n", fmt_name(name));
+    CHECK_THROWS_WITH(ver::run_study(f, quiet({})), Contains("study.name") && Contains("plain folder name"));
+  }
+  fs::current_path(cwd);
+}
+
+TEST_CASE("A killed study leaves no stale result and continues from its finished runs", "[study]") {
+  const fs::path f = study_copy("resume");
+  const fs::path out = fresh_dir("resume_out");
+  // A first, complete run: two runs done, none reused.
+  const auto r1 = ver::run_study(f, quiet(out));
+  REQUIRE(fs::exists(out / "result.json"));
+  CHECK_FALSE(fs::exists(out / "running.json"));
+  CHECK(r1.json["provenance"]["runs_run"] == 2);
+  CHECK(r1.json["provenance"]["runs_reused"] == 0);
+  // Killed (SIGTERM at the first step of the first run that is not cached): no result.json is left
+  // behind, running.json says why, and the report lists the study as incomplete.
+  fs::remove_all(out / "cache");
+  dem::set_interrupt_signal(SIGTERM);
+  CHECK_THROWS_AS(ver::run_study(f, quiet(out)), ver::StudyInterrupted);
+  dem::set_interrupt_signal(0);
+  CHECK_FALSE(fs::exists(out / "result.json"));
+  CHECK(fs::exists(out / "running.json"));
+  const auto listed = report::read_study_results(out.parent_path());
+  bool found = false;
+  for (const auto& s : listed)
+    if (s.folder == out.filename().string()) {
+      found = true;
+      CHECK_THAT(s.read_error, Contains("interrupted"));
+    }
+  CHECK(found);
+  // Run again: runs finished earlier are reused (here: all, after a complete run), results identical.
+  const auto r2 = ver::run_study(f, quiet(out));
+  const auto r3 = ver::run_study(f, quiet(out));
+  CHECK(r3.json["provenance"]["runs_reused"] == 2);
+  CHECK(r3.json["provenance"]["runs_run"] == 0);
+  CHECK(r3.json["checks"].dump() == r1.json["checks"].dump());
+  CHECK(r2.json["checks"].dump() == r1.json["checks"].dump());
+  // --fresh clears the cache: every run again.
+  auto o = quiet(out);
+  o.use_cache = false;
+  CHECK(ver::run_study(f, o).json["provenance"]["runs_run"] == 2);
+}
+
+TEST_CASE("One broken result.json does not stop the others from being read", "[study][report]") {
+  const fs::path dir = fresh_dir("broken_results");
+  for (const char* d : {"a_good", "b_truncated", "c_no_order", "d_running"}) fs::create_directories(dir / d);
+  std::ofstream(dir / "a_good" / "result.json") << R"({"study": "a", "passed": true, "checks": [{"passed": true}]})";
+  std::ofstream(dir / "b_truncated" / "result.json") << R"({"study": "b", "checks": [)";
+  std::ofstream(dir / "c_no_order" / "result.json") << R"({"study": "c", "checks": [{"passed": false, "observed_order": 2}]})";
+  std::ofstream(dir / "d_running" / "running.json") << R"({"status": "running"})";
+  const auto studies = report::read_study_results(dir);
+  REQUIRE(studies.size() == 4);
+  CHECK(report::study_status(studies[0]) == "PASS");
+  CHECK(report::study_status(studies[1]) == "UNREADABLE");
+  CHECK(report::study_status(studies[2]) == "FAIL");
+  CHECK_FALSE(report::number_field(report::array_field(studies[2].result, "checks")[0], "expected_order"));
+  CHECK(report::study_status(studies[3]) == "UNREADABLE");
+  CHECK_THAT(studies[3].read_error, Contains("interrupted or is still running"));
+}
