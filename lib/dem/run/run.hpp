@@ -20,7 +20,7 @@ struct RunOptions {
 
 struct RunResult {
   std::string status;   // "completed", "settled", "blow-up"
-  std::string message;  // what happened, for a blow-up
+  std::string message;  // what happened, for a blow-up or a settle stop
   std::int64_t steps = 0;
   double time = 0.0;                 // simulated [s]
   double wall_seconds = 0.0;
@@ -32,6 +32,10 @@ struct RunResult {
 
 /// The code version, build type and the like, recorded in every result file.
 nlohmann::json provenance();
+
+/// Checks the quantity names of output.series and of the probes against the model; throws CaseError
+/// with the file:line of the name (`dem2d check` and run_case call it before anything runs).
+void check_outputs(const Case& c);
 
 RunResult run_case(const Case& c, const RunOptions& opt);
 
