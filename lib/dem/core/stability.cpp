@@ -71,11 +71,12 @@ std::vector<StabilityTerm> registered_stability_terms(const Model&) {
 //
 // Arrangements: contacts sit at directions θ_c around the element; two element contacts are at
 // least 2 asin((1−ε)ρ/(r+ρ)) apart (ρ the smallest partner radius, r the largest radius of the
-// element's material, ε = 5 % overlap), so at most 6 for equal disks; an element contact is at least
+// element's material, ε = 1 % overlap: a packed bed at equilibrium overlaps far less, about 1e-4 r
+// per layer in Kiyama's silo, refs §1.7), so at most 6 for equal disks; an element contact is at least
 // acos((r − (1−ε)ρ)/(r+ρ)) from a segment wall's contact (the wall blocks the half-plane behind it:
 // 90° for equal disks), any angle from a point wall's; wall contacts may coincide (a joint, a slit
 // corner). An element touches at most the walls of the largest set that lie pairwise within 2r of each
-// other, each wall once. The maximum over arrangements is found on a 1° grid with every gap rounded
+// other, each wall once. The maximum over arrangements is found on a 0.5° grid with every gap rounded
 // down (so each real arrangement rounds to one on it), each grid point valued at the largest w cos²θ
 // within δ/2 of it: the grid maximum bounds the true one (and equals it for contacts along the axes).
 //
@@ -85,8 +86,8 @@ std::vector<StabilityTerm> registered_stability_terms(const Model&) {
 
 namespace {
 
-constexpr double kOverlap = 0.05;
-constexpr int kGrid = 360;
+constexpr double kOverlap = 0.01;
+constexpr int kGrid = 720;
 constexpr double inf = std::numeric_limits<double>::infinity();
 
 struct Weights {  // the objective per contact: w cos²θ + b
@@ -102,16 +103,19 @@ struct Kind {
   std::vector<std::string> laws;
   void merge(const Kind& o) {
     if (!o.present) return;
-    auto mx = [](Weights& a, const Weights& b) {
-      a.w = std::max(a.w, b.w);
-      a.b = std::max(a.b, b.b);
+    auto up = [](double& a, double b) {  // the larger, and a NaN stays a NaN
+      if (std::isnan(b) || b > a) a = b;
+    };
+    auto mx = [&](Weights& a, const Weights& b) {
+      up(a.w, b.w);
+      up(a.b, b.b);
     };
     mx(k, o.k);
     mx(c, o.c);
     mx(k_stick, o.k_stick);
     mx(c_stick, o.c_stick);
-    hopf = std::min(hopf, o.hopf);
-    hopf_stick = std::min(hopf_stick, o.hopf_stick);
+    hopf = std::isnan(o.hopf) ? o.hopf : std::min(hopf, o.hopf);
+    hopf_stick = std::isnan(o.hopf_stick) ? o.hopf_stick : std::min(hopf_stick, o.hopf_stick);
     for (const auto& l : o.laws)
       if (std::find(laws.begin(), laws.end(), l) == laws.end()) laws.push_back(l);
     present = true;
@@ -133,7 +137,19 @@ struct Arrangement {
 
 /// max Σ_c (w_c cos²θ_c + b_c) over arrangements (see above). types 0 = element, 1 = segment wall,
 /// 2 = point wall; gaps[a][b] in radians between consecutive contacts of types a, b.
-Arrangement arrangement_max(const Weights wt[3], const int max_count[3], int max_walls, const double gaps[3][3]) {
+Arrangement arrangement_max(const Weights wt[3], const int max_count[3], const std::vector<std::pair<int, int>>& wall_sets,
+                            const double gaps[3][3]) {
+  // Point walls have no gap to anything, so they do not constrain the others: each sits at the
+  // direction of the largest value (w + b) and is added to the arrangement of the element and segment
+  // contacts (which the sequence below handles: a gap between consecutive contacts implies the gaps
+  // between all, as the segment–element gap is at least half the element–element gap).
+  auto points_with = [&](int s) {  // the most point walls that can join s segment walls
+    int best = s == 0 ? 0 : -1;
+    for (const auto& [ws, wp] : wall_sets)
+      if (s <= ws) best = std::max(best, wp);
+    return best;  // −1: s segment walls cannot touch at once
+  };
+  const double point_value = wt[2].w + wt[2].b;
   const double delta = 2.0 * std::numbers::pi / kGrid;
   int g[3][3];
   for (int a = 0; a < 3; ++a)
@@ -151,16 +167,17 @@ Arrangement arrangement_max(const Weights wt[3], const int max_count[3], int max
       f[t][static_cast<std::size_t>(p)] = wt[t].w * cos2 + wt[t].b;
     }
   }
-  const int nd = max_count[0] + 1, ns = max_count[1] + 1, np = max_count[2] + 1;
+  const int nd = max_count[0] + 1, ns = max_count[1] + 1, np = 1;
   const int states = nd * ns * np * 3;
   auto idx = [&](int d, int s, int p, int t) { return ((d * ns + s) * np + p) * 3 + t; };
   const double none = -inf;
   std::vector<double> best(static_cast<std::size_t>(kGrid) * states), pm(best.size());
   Arrangement out;
+  if (max_count[2] > 0 && points_with(0) > 0) out = {points_with(0) * point_value, 0, 0, points_with(0)};
   // Every arrangement can be turned by π (cos² has period π) so that its first contact lies in [0, π).
   for (int s0 = 0; s0 < kGrid / 2; ++s0) {
-    for (int t0 = 0; t0 < 3; ++t0) {
-      if (max_count[t0] == 0 || (t0 > 0 && max_walls == 0)) continue;
+    for (int t0 = 0; t0 < 2; ++t0) {
+      if (max_count[t0] == 0) continue;
       std::fill(best.begin() + static_cast<std::ptrdiff_t>(s0) * states, best.end(), none);
       std::fill(pm.begin() + static_cast<std::ptrdiff_t>(s0) * states, pm.end(), none);
       for (int p = s0; p < kGrid; ++p) {
@@ -170,9 +187,9 @@ Arrangement arrangement_max(const Weights wt[3], const int max_count[3], int max
         for (int d = 0; d < nd; ++d)
           for (int s = 0; s < ns; ++s)
             for (int q = 0; q < np; ++q) {
-              const int walls = s + q;
-              if (walls > max_walls) continue;
-              for (int t = 0; t < 3; ++t) {
+              const int points = points_with(s);
+              if (points < 0) continue;
+              for (int t = 0; t < 2; ++t) {
                 const int cnt[3] = {d, s, q};
                 if (cnt[t] == 0) continue;
                 double v = none;
@@ -181,7 +198,7 @@ Arrangement arrangement_max(const Weights wt[3], const int max_count[3], int max
                 } else {
                   int prev[3] = {d, s, q};
                   --prev[t];
-                  for (int tp = 0; tp < 3; ++tp) {
+                  for (int tp = 0; tp < 2; ++tp) {
                     // a gap of 0 (walls) allows the same position: its predecessors have fewer
                     // contacts and are already final at p
                     const int pp = p - g[tp][t];
@@ -196,7 +213,8 @@ Arrangement arrangement_max(const Weights wt[3], const int max_count[3], int max
                 if (v > none) {
                   const bool single = d + s + q == 1;
                   if (single || s0 + kGrid - p >= g[t][t0]) {
-                    if (v > out.value) out = {v, d, s, q};
+                    const double total = v + (max_count[2] > 0 ? points * point_value : 0.0);
+                    if (total > out.value) out = {total, d, s, max_count[2] > 0 ? points : 0};
                   }
                 }
               }
@@ -222,21 +240,31 @@ double segment_distance(const Wall& a, const Wall& b) {
   return d;
 }
 
-/// Largest set of walls that lie pairwise within `reach` of each other (an element of radius reach/2
-/// can touch at most those at once).
-int largest_wall_set(const std::vector<const Wall*>& walls, double reach) {
+/// The sets of walls that lie pairwise within `reach` of each other (an element of radius reach/2 can
+/// touch at most one such set at once), as (segment walls, point walls) counts of each maximal set.
+std::vector<std::pair<int, int>> wall_sets(const std::vector<const Wall*>& walls, double reach) {
   const std::size_t n = walls.size();
-  if (n == 0) return 0;
-  if (n > 24) return static_cast<int>(n);  // too many to enumerate: every wall (conservative)
+  std::vector<std::pair<int, int>> out;
+  auto composition = [&](std::uint32_t set) {
+    int sg = 0, pt = 0;
+    for (std::size_t k = 0; k < n; ++k)
+      if (set >> k & 1u) ++(walls[k]->kind == WallKind::segment ? sg : pt);
+    return std::pair<int, int>{sg, pt};
+  };
+  if (n == 0) return out;
+  if (n > 24) {  // too many to enumerate: every wall at once (conservative)
+    int sg = 0, pt = 0;
+    for (const Wall* w : walls) ++(w->kind == WallKind::segment ? sg : pt);
+    return {{sg, pt}};
+  }
   std::vector<std::uint32_t> adj(n, 0);
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = 0; b < n; ++b)
       if (a != b && segment_distance(*walls[a], *walls[b]) <= reach) adj[a] |= 1u << b;
-  int best = 1;
-  // Bron–Kerbosch without pivoting (n ≤ 24)
+  // Bron–Kerbosch without pivoting (n ≤ 24): every maximal set
   auto rec = [&](auto&& self, std::uint32_t r, std::uint32_t p, std::uint32_t x) -> void {
     if (!p && !x) {
-      best = std::max(best, std::popcount(r));
+      out.push_back(composition(r));
       return;
     }
     while (p) {
@@ -246,8 +274,8 @@ int largest_wall_set(const std::vector<const Wall*>& walls, double reach) {
       x |= 1u << v;
     }
   };
-  rec(rec, 0u, (n == 32 ? ~0u : ((1u << n) - 1u)), 0u);
-  return best;
+  rec(rec, 0u, (1u << n) - 1u, 0u);
+  return out;
 }
 
 std::string law_name(const Model& m, std::int32_t law) {
@@ -363,9 +391,10 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
   out.limit = out.limit_sticking = inf;
   out.assumptions = fmt::format(
       "every contact the case can form: equal-size neighbours at most 6 per element (fewer if the case has "
-      "fewer elements; 2 asin((1-e)rho/(r+rho)) apart, overlaps e <= {:.0f} %), a segment wall's contact "
-      "blocks the half-plane behind it, walls that lie within 2r of each other may all touch at once; "
-      "worst directions on a 1 deg grid (each grid point taking the largest value within half a degree); block-Gershgorin bound, exact for one contact; shear springs of "
+      "fewer elements; 2 asin((1-e)rho/(r+rho)) apart, overlaps e <= {:.0f} % of a radius), a segment wall's "
+      "contact blocks the half-plane behind it, a point wall nothing, walls that lie within 2r of each other "
+      "may all touch at once; "
+      "worst directions on a 0.5 deg grid (each grid point taking the largest value within a quarter degree); block-Gershgorin bound, exact for one contact; shear springs of "
       "Coulomb contacts counted only in the sticking limit",
       100 * kOverlap);
   bool first = true;
@@ -398,7 +427,8 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
     // Moving walls may come closer than they start: then every wall counts.
     bool moving = false;
     for (const Wall* w : walls) moving = moving || w->drive >= 0;
-    const int max_walls = moving ? static_cast<int>(walls.size()) : largest_wall_set(walls, 2.0 * s.fr_max * (1.0 + 1e-9));
+    const std::vector<std::pair<int, int>> sets =
+        moving ? std::vector<std::pair<int, int>>{{n_seg, n_pt}} : wall_sets(walls, 2.0 * s.fr_max * (1.0 + 1e-9));
     const double r = s.fr_max;
     int zd = 0;
     double gap_dd = 0.0, gap_sd = 0.0;
@@ -408,11 +438,24 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
       zd = std::min(partners, static_cast<int>(std::floor(2.0 * std::numbers::pi / gap_dd + 1e-9)));
       zd = std::min(zd, 12);
     }
-    const int counts[3] = {zd, std::min(n_seg, max_walls), std::min(n_pt, max_walls)};
+    auto finite = [](const Kind& k) {
+      for (const Weights* w : {&k.k, &k.c, &k.k_stick, &k.c_stick})
+        if (!std::isfinite(w->w) || !std::isfinite(w->b)) return false;
+      return !std::isnan(k.hopf) && !std::isnan(k.hopf_stick);
+    };
+    if (!finite(elem) || !finite(seg) || !finite(pt)) {
+      out.limit = out.limit_sticking = std::numeric_limits<double>::quiet_NaN();
+      out.element = s.lightest;
+      out.law = "a stiffness, dashpot, mass or inertia that is not a finite number";
+      return out;
+    }
+    int max_seg = 0, max_pt = 0;
+    for (const auto& [ws, wp] : sets) max_seg = std::max(max_seg, ws), max_pt = std::max(max_pt, wp);
+    const int counts[3] = {zd, max_seg, max_pt};
     const double gaps[3][3] = {{gap_dd, gap_sd, 0.0}, {gap_sd, 0.0, 0.0}, {0.0, 0.0, 0.0}};
     auto run = [&](Weights Kind::*field) {
       const Weights w[3] = {elem.*field, seg.*field, pt.*field};
-      return arrangement_max(w, counts, max_walls, gaps);
+      return arrangement_max(w, counts, sets, gaps);
     };
     const Arrangement ak = run(&Kind::k), ac = run(&Kind::c), aks = run(&Kind::k_stick), acs = run(&Kind::c_stick);
     double xk = 0.0, xc = 0.0, xhopf = inf;
