@@ -33,7 +33,9 @@ namespace {
 
 int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
   const dem::Case c = dem::read_case(file, sets);
-  const double limit = dem::check_case(c);
+  dem::StabilityBound b;
+  const double limit = dem::check_case(c, &b);
+  dem::check_outputs(c);
   const dem::Model& m = c.model;
   fmt::print("{}: OK — {}\n", file.string(), c.title);
   if (!c.source.empty()) fmt::print("  source: {}\n", c.source);
@@ -42,7 +44,17 @@ int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
   fmt::print("  integrator {}, dt = {:.6g} s, duration = {:.6g} s ({} steps)\n",
              m.numerics.integrator == dem::Integrator::k18 ? "K18" : "K19", m.numerics.dt, m.numerics.duration,
              std::llround(std::ceil(m.numerics.duration / m.numerics.dt - 1e-9)));
-  fmt::print("  stability limit of the assembly: {:.6g} s (dt is {:.3g} of it)\n", limit, m.numerics.dt / limit);
+  fmt::print("  stability limit: {:.6g} s (dt is {:.3g} of it), over every contact the case can form\n", limit,
+             m.numerics.dt / limit);
+  if (b.element >= 0)
+    fmt::print("    set by element {} ({}) with {} element and {} wall contacts: {}; lambda = {:.4g} 1/s^2, c = {:.4g} 1/s\n",
+               b.element, m.materials[static_cast<std::size_t>(m.elements.material[static_cast<std::size_t>(b.element)])].name,
+               b.element_contacts, b.wall_contacts, b.law.empty() ? std::string("no contact") : b.law, b.stiffness_rate,
+               b.damping_rate);
+  if (b.limit_sticking < limit)
+    fmt::print("    with every Coulomb shear spring sticking: {:.6g} s (dt is {:.3g} of it; a shear mode above it is "
+               "bounded by sliding, |f_s| = mu f_n)\n", b.limit_sticking, m.numerics.dt / b.limit_sticking);
+  fmt::print("    assumed: {}\n", b.assumptions);
   return 0;
 }
 

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -19,6 +21,14 @@ namespace {
 
 bool is_index(const std::string& s) {
   return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+}
+
+/// The index `s` if it is one below `size`, else nothing (no overflow for long digit strings).
+std::optional<std::size_t> index_below(const std::string& s, std::size_t size) {
+  if (!is_index(s) || s.size() > 18) return std::nullopt;
+  const auto v = static_cast<std::size_t>(std::stoull(s));
+  if (v >= size) return std::nullopt;
+  return v;
 }
 
 /// Applies `path=value` to the tree: value is parsed as a TOML value when it is one ("1e-6", "true",
@@ -51,13 +61,16 @@ void apply_override(toml::table& root, const std::string& kv) {
     const std::string& p = parts[k];
     so_far += (so_far.empty() ? "" : ".") + p;
     if (auto* arr = cur->as_array()) {
-      if (!is_index(p) || std::stoul(p) >= arr->size())
-        throw CaseError(fmt::format("{}: {}: expected an index below {} into this array", origin, so_far, arr->size()));
-      cur = arr->get(std::stoul(p));
+      const auto at = index_below(p, arr->size());
+      if (!at) throw CaseError(fmt::format("{}: {}: expected an index below {} into this array", origin, so_far, arr->size()));
+      cur = arr->get(*at);
     } else if (auto* tbl = cur->as_table()) {
       toml::node* next = tbl->get(p);
       if (!next) {
-        tbl->insert(p, toml::table{});
+        // a table created by the override names the override as its source (errors inside it say
+        // "--set …", not "file:0")
+        toml::table made = toml::parse("t = {}", origin);
+        made.get("t")->visit([&](auto& n) { tbl->insert(p, std::move(n)); });
         next = tbl->get(p);
       }
       cur = next;
@@ -70,15 +83,22 @@ void apply_override(toml::table& root, const std::string& kv) {
   if (auto* tbl = cur->as_table()) {
     // move, not copy: toml++ keeps the source ("--set …") of a moved node only
     v->visit([&](auto& n) { tbl->insert_or_assign(last, std::move(n)); });
-  } else if (auto* arr = cur->as_array(); arr && is_index(last) && std::stoul(last) < arr->size()) {
-    const auto idx = std::stoul(last);
+  } else if (auto* arr = cur->as_array(); arr && index_below(last, arr->size())) {
+    const auto idx = *index_below(last, arr->size());
     v->visit([&](auto& n) { arr->replace(arr->begin() + static_cast<std::ptrdiff_t>(idx), std::move(n)); });
+  } else if (cur->as_array()) {
+    throw CaseError(fmt::format("{}: {}: expected an index below {} into this array", origin, path, cur->as_array()->size()));
   } else {
     throw CaseError(fmt::format("{}: {}: cannot set this path", origin, path));
   }
 }
 
 // ---- tables -----------------------------------------------------------------------------------
+
+// Element limit of one case: ~0.6 kB per element (its arrays, neighbour candidates and about three
+// contact slots), so 2e7 elements need about 12 GB.
+constexpr std::int64_t kMaxElements = 20'000'000;
+constexpr double kBytesPerElement = 600.0;
 
 struct Reader {
   std::string file;
@@ -108,6 +128,15 @@ struct Reader {
     auto it = material_index.find(name);
     if (it == material_index.end()) r.fail(key, fmt::format("unknown material \"{}\" (declare it in [[material]])", name));
     return it->second;
+  }
+
+  /// Refuses a generator that would take the case past kMaxElements (before allocating anything).
+  void room_for(const TableReader& r, const std::string& key, std::int64_t more) {
+    const auto total = static_cast<std::int64_t>(c.model.elements.size()) + more;
+    if (total > kMaxElements)
+      r.fail(key, fmt::format("{} elements in all would need about {:.3g} GB ({} bytes per element with its contacts); "
+                              "a case may have at most {} elements", total,
+                              static_cast<double>(total) * kBytesPerElement * 1e-9, kBytesPerElement, kMaxElements));
   }
 
   void positive(const TableReader& r, const std::string& key, double v) {
@@ -329,6 +358,10 @@ ProbeKind probe_kind(const std::string& s) {
   if (s == "value") return ProbeKind::value;
   if (s == "max") return ProbeKind::max;
   if (s == "min") return ProbeKind::min;
+  if (s == "mean") return ProbeKind::mean;
+  if (s == "time_of_max") return ProbeKind::time_of_max;
+  if (s == "time_of_min") return ProbeKind::time_of_min;
+  if (s == "crossing") return ProbeKind::crossing;
   if (s == "slope") return ProbeKind::slope;
   if (s == "restitution") return ProbeKind::restitution;
   return ProbeKind::contact_duration;
@@ -421,6 +454,7 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
                        r.quantity_of(*v->get(1), "velocities", dims::velocity)});
       }
     }
+    if (rd.drive_index.count(name)) r.fail("name", fmt::format("drive \"{}\" declared twice", name));
     rd.drive_index[name] = static_cast<std::int32_t>(m.drives.size());
     m.drives.push_back(h);
   });
@@ -449,12 +483,16 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     const auto ec = rd.common(r);
     const Vec2 origin = r.vector("origin", dims::length);
     const auto nx = r.integer("columns", 1, 100000), ny = r.integer("rows", 1, 100000);
+    rd.room_for(r, "rows", nx * ny);
     const double spacing = r.quantity("spacing", dims::length, 2.0 * ec.radius);
     rd.positive(r, "spacing", spacing);
     const double rot = r.quantity("rotation", dims::angle, 0.0);
     const bool bonded = r.boolean("bonded", true);
     const std::int32_t group = bonded ? rd.next_group++ : -1;
     const Vec2 ex{std::cos(rot), std::sin(rot)}, ey = perp(ex);
+    const Vec2 far = origin + ex * (spacing * static_cast<double>(nx - 1)) + ey * (spacing * static_cast<double>(ny - 1));
+    if (!std::isfinite(far.x) || !std::isfinite(far.y))
+      r.fail("spacing", fmt::format("the lattice reaches a position that is not a finite number ({}, {})", far.x, far.y));
     for (std::int64_t b = 0; b < ny; ++b)
       for (std::int64_t a = 0; a < nx; ++a)
         rd.place(ec, origin + ex * (spacing * a) + ey * (spacing * b), rot, group);
@@ -465,6 +503,10 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     const Vec2 start = r.vector("start", dims::length);
     const Vec2 step = r.vector("step", dims::length);
     const auto n = r.integer("count", 1, 10000000);
+    rd.room_for(r, "count", n);
+    const Vec2 far = start + step * static_cast<double>(n - 1);
+    if (!std::isfinite(far.x) || !std::isfinite(far.y))
+      r.fail("step", fmt::format("the row reaches a position that is not a finite number ({}, {})", far.x, far.y));
     for (std::int64_t k = 0; k < n; ++k) rd.place(ec, start + step * static_cast<double>(k), 0.0, -1);
   });
   if (m.elements.size() == 0) top.fail_here("no elements: give [[element]], [[lattice]] or [[row]] tables");
@@ -524,6 +566,14 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     rd.non_negative(r, "skin", n.skin);
     n.allow_unstable = r.boolean("allow_unstable", false);
     n.energy_limit = r.quantity("energy_limit", dims::energy, 0.0);
+    rd.non_negative(r, "energy_limit", n.energy_limit);
+    n.max_step_fraction = r.number("max_step_fraction", 0.25);
+    rd.positive(r, "max_step_fraction", n.max_step_fraction);
+    // the step count must be a number an int64 (and a double, exactly) holds
+    const double steps = std::ceil(n.duration / n.dt - 1e-9);
+    if (!(steps <= 9.007199254740992e15))
+      r.fail("duration", fmt::format("{:.6g} s / dt = {:.6g} s is {:.4g} steps; at most 2^53 (9.0e15) steps", n.duration,
+                                     n.dt, steps));
     r.finish();
   } else {
     top.fail("numerics", "missing [numerics] table (dt, duration)");
@@ -534,6 +584,8 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     TableReader r(*t, "output", file);
     c.output.every = r.integer("every", 0, std::int64_t{1} << 40, 0);
     c.output.series = r.strings("series");
+    if (const toml::array* arr = r.node("series") ? r.node("series")->as_array() : nullptr)
+      for (const auto& item : *arr) c.output.series_locations.push_back(where(item, file));
     c.output.vtk = r.boolean("vtk", true);
     c.output.vtk_every = r.integer("vtk_every", 0, std::int64_t{1} << 40, 0);
     r.finish();
@@ -542,21 +594,44 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
   if (const toml::table* t = top.table("stop")) {
     TableReader r(*t, "stop", file);
     c.stop.settled_increment = r.optional_quantity("settled_increment", dims::length);
+    if (c.stop.settled_increment) rd.positive(r, "settled_increment", *c.stop.settled_increment);
+    if (r.has("settled_increment_factor")) {
+      c.stop.settled_increment_factor = r.number("settled_increment_factor");
+      rd.positive(r, "settled_increment_factor", *c.stop.settled_increment_factor);
+      if (!(norm(m.gravity) > 0.0)) r.fail("settled_increment_factor", "needs gravity (the threshold is factor·dt²·|g|)");
+    }
+    if (r.has("settled_force_ratio")) {
+      c.stop.settled_force_ratio = r.number("settled_force_ratio");
+      rd.positive(r, "settled_force_ratio", *c.stop.settled_force_ratio);
+    }
+    c.stop.settle_window = r.integer("settle_window", 1, std::int64_t{1} << 40, 1000);
     c.stop.settle_min_time = r.quantity("settle_min_time", dims::time, 0.0);
+    rd.non_negative(r, "settle_min_time", c.stop.settle_min_time);
     r.finish();
   }
   // [[probe]]
   rd.each(top, "probe", [&](TableReader& r, std::size_t) {
     ProbeSpec p;
     p.name = r.string("name");
-    p.kind = probe_kind(r.choice("kind", {"value", "max", "min", "slope", "restitution", "contact_duration"}, "value"));
-    if (p.kind == ProbeKind::value || p.kind == ProbeKind::max || p.kind == ProbeKind::min || p.kind == ProbeKind::slope) {
+    p.kind = probe_kind(r.choice("kind", {"value", "max", "min", "mean", "time_of_max", "time_of_min", "crossing", "slope",
+                                          "restitution", "contact_duration"}, "value"));
+    p.location = where(*r.node("name"), file);
+    if (p.kind != ProbeKind::restitution && p.kind != ProbeKind::contact_duration) {
       p.quantity = r.string("quantity");
+      p.location = where(*r.node("quantity"), file);
       if (p.kind == ProbeKind::value) p.at = r.optional_quantity("at", dims::time);
       if (p.kind == ProbeKind::slope) {
         p.from = r.quantity("from", dims::time);
         p.to = r.quantity("to", dims::time);
-        if (!(p.to > p.from)) r.fail("to", "must be later than from");
+      } else if (p.kind != ProbeKind::value) {
+        p.from = r.quantity("from", dims::time, 0.0);
+        p.to = r.quantity("to", dims::time, std::numeric_limits<double>::infinity());
+      }
+      if (p.kind != ProbeKind::value && !(p.to > p.from)) r.fail("to", "must be later than from");
+      if (p.kind == ProbeKind::crossing) {
+        p.level = r.number("level");
+        const std::string d = r.choice("direction", {"up", "down", "either"}, "either");
+        p.direction = d == "up" ? 1 : d == "down" ? -1 : 0;
       }
     } else {
       p.element = static_cast<std::uint32_t>(r.integer("element", 0, static_cast<std::int64_t>(m.elements.size()) - 1));
@@ -584,7 +659,7 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
   return c;
 }
 
-double check_case(const Case& c) {
+double check_case(const Case& c, StabilityBound* bound) {
   const Model& m = c.model;
   const Elements& e = m.elements;
   const std::string file = c.path.string();
@@ -612,15 +687,22 @@ double check_case(const Case& c) {
         throw CaseError(fmt::format("{}: element {} overlaps wall \"{}\" by {:.4g} m at the start", file, i, w.name, overlap));
     }
   }
-  // The time step against the stability limit of the assembly.
+  // The time step against the stability limit of every contact the case can form.
   Simulation sim(m);
-  const double limit = sim.stability_limit();
+  const StabilityBound b = sim.stability_bound();
+  if (bound) *bound = b;
+  const double limit = b.limit;
+  const std::string dt_at = c.dt_location.empty() ? file : c.dt_location;
+  if (std::isnan(limit))
+    throw CaseError(fmt::format("{}: numerics.dt: the stability limit is not a number: element {} has {}", dt_at,
+                                b.element, b.law));
   if (m.numerics.dt > limit && !m.numerics.allow_unstable) {
     throw CaseError(fmt::format(
-        "{}: numerics.dt: {:.6g} s is above the stability limit {:.6g} s of {} for this assembly "
-        "(Gershgorin bound over the contacts that exist or are about to form; references.md §1.5). "
+        "{}: numerics.dt: {:.6g} s is above the stability limit {:.6g} s of {} for the contacts this case can "
+        "form (set by element {} with {} element and {} wall contacts, {}; refs §1.5). "
         "Use numerics.dt <= {:.6g} s, or numerics.allow_unstable = true for a stability study.",
-        c.dt_location.empty() ? file : c.dt_location, m.numerics.dt, limit, m.numerics.integrator == Integrator::k18 ? "K18" : "K19", limit));
+        dt_at, m.numerics.dt, limit, m.numerics.integrator == Integrator::k18 ? "K18" : "K19", b.element,
+        b.element_contacts, b.wall_contacts, b.law, limit));
   }
   return limit;
 }

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dem/core/model.hpp"
+#include "dem/core/stability.hpp"
 
 namespace dem {
 
@@ -20,15 +21,19 @@ class CaseError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class ProbeKind { value, max, min, slope, restitution, contact_duration };
+enum class ProbeKind { value, max, min, mean, time_of_max, time_of_min, crossing, slope, restitution, contact_duration };
 
 /// A quantity of interest computed during a run (written to summary.json under "probes").
 struct ProbeSpec {
   std::string name;
+  std::string location;          // "file:line" of the probe (or its quantity), for errors
   ProbeKind kind = ProbeKind::value;
-  std::string quantity;          // value/max/min: a series quantity name
+  std::string quantity;          // value/max/min/mean/time_of_*/crossing/slope: a series quantity name
   std::optional<double> at;      // value: time [s] (linear interpolation); none: end of run
-  double from = 0.0, to = 0.0;   // slope: least-squares slope dq/dt over from ≤ t ≤ to [s]
+  double from = 0.0, to = 0.0;   // slope: least-squares slope dq/dt over from ≤ t ≤ to [s]; max, min,
+                                 // mean, time_of_*, crossing: the window (to = +inf: to the end)
+  double level = 0.0;            // crossing: the level [SI units of the quantity]
+  int direction = 0;             // crossing: +1 upwards, −1 downwards, 0 either
   std::uint32_t element = 0;     // restitution / contact_duration: element i
   std::uint32_t other = 0;       //   and element j or wall j
   bool other_is_wall = false;
@@ -36,14 +41,21 @@ struct ProbeSpec {
 
 struct OutputSpec {
   std::int64_t every = 0;              // write a series row every this many steps (0: only first/last)
-  std::vector<std::string> series;     // quantity names (output.cpp lists them)
+  std::vector<std::string> series;     // quantity names (quantities.hpp lists them)
+  std::vector<std::string> series_locations;  // "file:line" of each name, for errors
   std::int64_t vtk_every = 0;          // snapshot every this many steps (0: first and last only)
   bool vtk = true;
 };
 
+/// When a run counts as settled (run.cpp): every criterion given must hold at every step of a window
+/// of `settle_window` consecutive steps (not before `settle_min_time`).
 struct StopSpec {
-  std::optional<double> settled_increment;  // stop when the mean |Δu|, |Δv| per step falls below [m]
-  double settle_min_time = 0.0;             // not before this time [s]
+  std::optional<double> settled_increment;         // mean |Δu|, |Δv| per step below this [m]
+  std::optional<double> settled_increment_factor;  // Kiyama: mean |Δu|, |Δv| below factor·Δt²·|g|
+  std::optional<double> settled_force_ratio;       // mean |resultant| / mean |contact force| below this
+  std::int64_t settle_window = 1000;               // steps
+  double settle_min_time = 0.0;                    // not before this time [s]
+  bool any() const { return settled_increment || settled_increment_factor || settled_force_ratio; }
 };
 
 struct Case {
@@ -61,8 +73,9 @@ struct Case {
 /// Reads a case file and applies `key=value` overrides. Throws CaseError with file:line: key: ...
 Case read_case(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
 
-/// Checks what can only be checked on the assembled model: initial overlaps, the time-step limit.
-/// Throws CaseError. Returns the assembly's stability limit [s].
-double check_case(const Case& c);
+/// Checks what can only be checked on the assembled model: initial overlaps, the time-step limit over
+/// every contact the case can form. Throws CaseError. Returns the stability limit [s]; `bound`, if
+/// given, receives what sets it and what it assumes.
+double check_case(const Case& c, StabilityBound* bound = nullptr);
 
 }  // namespace dem

@@ -34,8 +34,19 @@ const toml::node& TableReader::need(const std::string& key) const {
 
 double TableReader::to_quantity(const toml::node& n, const std::string& key, Dimension dim) const {
   try {
-    if (auto s = n.value_exact<std::string>()) return to_si(std::string_view(*s), dim);
-    if (auto d = n.value<double>()) return to_si(*d, dim);
+    double v = 0.0;
+    bool got = false;
+    if (auto s = n.value_exact<std::string>()) {
+      v = to_si(std::string_view(*s), dim);
+      got = true;
+    } else if (auto d = n.value<double>()) {
+      v = to_si(*d, dim);
+      got = true;
+    }
+    if (got) {
+      if (!std::isfinite(v)) fail(key, fmt::format("expected a finite {}, got {}", describe(dim), v));
+      return v;
+    }
   } catch (const UnitError& e) {
     fail(key, e.what());
   }
@@ -60,6 +71,10 @@ std::optional<double> TableReader::optional_quantity(const std::string& key, Dim
 
 std::pair<double, Dimension> TableReader::quantity_either(const std::string& key, Dimension a, Dimension b) const {
   const toml::node& n = need(key);
+  const auto finite = [&](std::pair<double, Dimension> r) {
+    if (!std::isfinite(r.first)) fail(key, fmt::format("expected a finite {}, got {}", describe(r.second), r.first));
+    return r;
+  };
   if (auto s = n.value_exact<std::string>()) {
     Quantity q;
     try {
@@ -67,12 +82,12 @@ std::pair<double, Dimension> TableReader::quantity_either(const std::string& key
     } catch (const UnitError& e) {
       fail(key, e.what());
     }
-    if (q.dim == a) return {q.value, a};
-    if (q.dim == b) return {q.value, b};
-    if (q.dim == dims::dimensionless) return {q.value, a};  // a bare number: SI of the first kind
+    if (q.dim == a) return finite({q.value, a});
+    if (q.dim == b) return finite({q.value, b});
+    if (q.dim == dims::dimensionless) return finite({q.value, a});  // a bare number: SI of the first kind
     fail(key, fmt::format("expected {} or {}, got {} from '{}'", describe(a), describe(b), to_string(q.dim), *s));
   }
-  if (auto d = n.value<double>()) return {*d, a};
+  if (auto d = n.value<double>()) return finite({*d, a});
   fail(key, fmt::format("expected {} as a number or a string with a unit", describe(a)));
 }
 

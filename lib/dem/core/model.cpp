@@ -10,7 +10,8 @@ std::size_t add_element(Model& m, Shape shape, std::int32_t material, double rad
   const double rho = m.materials.at(static_cast<std::size_t>(material)).density;
   const double l = m.thickness;
   double mass = 0.0, inertia = 0.0;
-  if (shape == Shape::pre && pre_mass == PreMass::square) {
+  const bool square = shape == Shape::pre && pre_mass == PreMass::square;
+  if (square) {
     mass = 4.0 * radius * radius * l * rho;  // (M17)
     inertia = (2.0 / 3.0) * radius * radius * mass;
   } else {
@@ -18,7 +19,10 @@ std::size_t add_element(Model& m, Shape shape, std::int32_t material, double rad
     inertia = 0.5 * radius * radius * mass;
   }
   if (mass_override > 0.0) {
-    inertia *= mass_override / mass;
+    // the inertia of the given mass in the same shape: scaled if the density gave a mass (as
+    // before, bit for bit), else from the shape's factor (a material without density)
+    if (mass > 0.0) inertia *= mass_override / mass;
+    else inertia = (square ? 2.0 / 3.0 : 0.5) * radius * radius * mass_override;
     mass = mass_override;
   }
   e.x.push_back(position.x);

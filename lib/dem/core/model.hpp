@@ -59,6 +59,7 @@ struct Numerics {
   double skin = 0.0;      // Verlet skin of the neighbour search [m] (0: a quarter of the smallest radius)
   bool allow_unstable = false;  // run even above the stability limit (for stability studies)
   double energy_limit = 0.0;    // stop when the total energy exceeds this [J] (0: automatic)
+  double max_step_fraction = 0.25;  // blow-up: no element may move more than this × its radius in one step
 };
 
 /// A static preload: before the first step the element is moved rigidly (rotated by `rotation` about

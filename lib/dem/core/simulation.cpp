@@ -224,22 +224,30 @@ void Simulation::rebuild() {
   for (std::size_t k = 0; k < m_.walls.size(); ++k) wall_ref_[k] = m_.walls[k].a;
 }
 
-void Simulation::start_linear(LinearSlot& s, double overlap, double du_n, double du_s, double mass_i,
-                              double mass_j) const {
-  const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
-  s.touching = 1;
-  s.h = {};
+Dashpots linear_dashpots(const PairLaw& law, double mass_i, double mass_j) {
+  Dashpots d;
   if (law.damping_from_ratio) {
     // (K20, K25): η_n = 2ζ√(m K_n), η_s = η_n √(K_s/K_n); m per the mass basis.
     double m = 0.0;
     if (mass_j <= 0.0) m = mass_i;  // wall
     else m = law.mass_basis == MassBasis::reduced ? reduced_mass(mass_i, mass_j) : 0.5 * (mass_i + mass_j);
-    s.eta_n = 2.0 * law.damping_ratio * std::sqrt(m * law.linear.kn);
-    s.eta_s = law.linear.kn > 0.0 ? s.eta_n * std::sqrt(law.linear.ks / law.linear.kn) : 0.0;
+    d.eta_n = 2.0 * law.damping_ratio * std::sqrt(m * law.linear.kn);
+    d.eta_s = law.linear.kn > 0.0 ? d.eta_n * std::sqrt(law.linear.ks / law.linear.kn) : 0.0;
   } else {
-    s.eta_n = law.eta_n;
-    s.eta_s = law.eta_s;
+    d.eta_n = law.eta_n;
+    d.eta_s = law.eta_s;
   }
+  return d;
+}
+
+void Simulation::start_linear(LinearSlot& s, double overlap, double du_n, double du_s, double mass_i,
+                              double mass_j) const {
+  const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
+  s.touching = 1;
+  s.h = {};
+  const Dashpots d = linear_dashpots(law, mass_i, mass_j);
+  s.eta_n = d.eta_n;
+  s.eta_s = d.eta_s;
   // Contacts present at the start, or formed with the overlap onset, start from the geometric
   // overlap: e_n = K_n δ after this step's increment is added (references.md §1.4: e_0 = K x(0)).
   if (step_ == 0 || law.onset == Onset::overlap) {
@@ -334,8 +342,6 @@ void Simulation::sweep_linear_walls(double inv_dt) {
   }
 }
 
-namespace {
-
 FaceConstants face_constants(const PairLaw& law, double r_i, double r_j, double m_eff, double thickness) {
   FaceConstants c;
   const int n = law.face.segments;
@@ -358,8 +364,6 @@ FaceConstants face_constants(const PairLaw& law, double r_i, double r_j, double 
   }
   return c;
 }
-
-}  // namespace
 
 void Simulation::sweep_face_pairs(double inv_dt) {
   Elements& e = m_.elements;
@@ -606,6 +610,21 @@ std::size_t Simulation::contact_count() const {
   return n;
 }
 
+std::pair<double, std::size_t> Simulation::contact_force_sum() const {
+  double sum = 0.0;
+  std::size_t n = 0;
+  auto add = [&](bool touching, double fn, double fs) {
+    if (!touching || (fn == 0.0 && fs == 0.0)) return;
+    sum += std::hypot(fn, fs);
+    ++n;
+  };
+  for (const auto& s : linear_pairs_) add(s.touching, s.f.fn, s.f.fs);
+  for (const auto& s : linear_walls_) add(s.touching, s.f.fn, s.f.fs);
+  for (const auto& s : face_pairs_) add(s.touching, s.f.p, s.f.q);
+  for (const auto& s : face_walls_) add(s.touching, s.f.p, s.f.q);
+  return {sum, n};
+}
+
 ContactView Simulation::contact(std::uint32_t i, std::uint32_t j, bool wall) const {
   if (!wall && j < i) std::swap(i, j);
   auto find = [&](const auto& slots) -> const auto* {
@@ -623,93 +642,13 @@ ContactView Simulation::contact(std::uint32_t i, std::uint32_t j, bool wall) con
 }  // namespace dem
 
 // ---------------------------------------------------------------------------------------------------
-// Time-step guard (stability.hpp): Gershgorin row sums of the mass-normalised stiffness and damping
-// matrices, per degree of freedom, over the contacts of the assembly.
+// Time-step guard: the bound over every contact the case can form (stability.cpp).
 namespace dem {
 
-namespace {
-
-struct Rows {
-  std::vector<double> k, c;  // 3 per element: x, y, φ
-};
-
-/// Adds one spring–dashpot acting on the relative displacement b·q (b over the DOFs of i and j).
-void add_spring(Rows& rows, const Elements& e, std::uint32_t i, std::int64_t j, const double bi[3],
-                const double bj[3], double k, double c) {
-  const double si[3] = {std::sqrt(e.inv_mass[i]), std::sqrt(e.inv_mass[i]), std::sqrt(e.inv_inertia[i])};
-  double ti[3], tj[3] = {0, 0, 0}, sum = 0.0;
-  for (int a = 0; a < 3; ++a) sum += std::abs(ti[a] = bi[a] * si[a]);
-  if (j >= 0) {
-    const auto jj = static_cast<std::size_t>(j);
-    const double sj[3] = {std::sqrt(e.inv_mass[jj]), std::sqrt(e.inv_mass[jj]), std::sqrt(e.inv_inertia[jj])};
-    for (int a = 0; a < 3; ++a) sum += std::abs(tj[a] = bj[a] * sj[a]);
-  }
-  for (int a = 0; a < 3; ++a) {
-    rows.k[3 * i + a] += k * std::abs(ti[a]) * sum;
-    rows.c[3 * i + a] += c * std::abs(ti[a]) * sum;
-    if (j >= 0) {
-      rows.k[3 * static_cast<std::size_t>(j) + a] += k * std::abs(tj[a]) * sum;
-      rows.c[3 * static_cast<std::size_t>(j) + a] += c * std::abs(tj[a]) * sum;
-    }
-  }
+StabilityBound Simulation::stability_bound() const {
+  return assembly_stability_bound(m_, registered_stability_terms(m_));
 }
 
-}  // namespace
-
-double Simulation::stability_limit() const {
-  const Elements& e = m_.elements;
-  Rows rows;
-  rows.k.assign(3 * e.size(), 0.0);
-  rows.c.assign(3 * e.size(), 0.0);
-  auto add_contact = [&](std::uint32_t i, std::int64_t j, Vec2 n, const PairLaw& law) {
-    const Vec2 t = perp(n);
-    const double ri = e.radius[i], rj = j >= 0 ? e.radius[static_cast<std::size_t>(j)] : 0.0;
-    const double mi = e.mass[i], mj = j >= 0 ? e.mass[static_cast<std::size_t>(j)] : 0.0;
-    if (law.kind == LawKind::linear) {
-      LinearSlot s;
-      s.law = static_cast<std::int32_t>(&law - m_.laws.data());
-      start_linear(s, 0.0, 0.0, 0.0, mi, mj);
-      const double bn_i[3] = {n.x, n.y, 0.0}, bn_j[3] = {-n.x, -n.y, 0.0};
-      const double bt_i[3] = {t.x, t.y, ri}, bt_j[3] = {-t.x, -t.y, rj};
-      add_spring(rows, e, i, j, bn_i, bn_j, law.linear.kn, s.eta_n);
-      add_spring(rows, e, i, j, bt_i, bt_j, law.linear.ks, s.eta_s);
-    } else {
-      const FaceConstants c = face_constants(law, ri, rj, j >= 0 ? reduced_mass(mi, mj) : mi, m_.thickness);
-      for (int k = 0; k < law.face.segments; ++k) {
-        const double lever = c.half_length * segment_xi(law.face.positions, law.face.segments, k);
-        const double bn_i[3] = {n.x, n.y, -lever}, bn_j[3] = {-n.x, -n.y, lever};
-        const double bt_i[3] = {t.x, t.y, ri}, bt_j[3] = {-t.x, -t.y, rj};
-        add_spring(rows, e, i, j, bn_i, bn_j, c.kn, c.eta_n);
-        add_spring(rows, e, i, j, bt_i, bt_j, c.ks, c.eta_s);
-      }
-    }
-  };
-  // Every candidate pair of the neighbour list counts: contacts that exist and those about to form.
-  for (const CandidatePair& p : candidates_) {
-    const std::int32_t law = m_.law_index(e.material[p.i], e.material[p.j]);
-    if (law < 0) continue;
-    Vec2 d{e.x[p.j] - e.x[p.i], e.y[p.j] - e.y[p.i]};
-    const double len = norm(d);
-    add_contact(p.i, p.j, len > 0.0 ? d * (1.0 / len) : Vec2{1.0, 0.0}, m_.laws[static_cast<std::size_t>(law)]);
-  }
-  for (std::uint32_t i = 0; i < e.size(); ++i) {
-    if (!e.active[i]) continue;
-    const Vec2 ctr{e.x[i], e.y[i]};
-    for (const Wall& w : m_.walls) {
-      const Vec2 d = closest_point(w, ctr) - ctr;
-      const double len = norm(d);
-      if (len >= e.radius[i] + skin_ || len == 0.0) continue;
-      const std::int32_t law = m_.law_index(e.material[i], w.material);
-      if (law >= 0) add_contact(i, -1, d * (1.0 / len), m_.laws[static_cast<std::size_t>(law)]);
-    }
-  }
-  double limit = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < e.size(); ++i) {
-    if (!e.active[i] || e.motion[i] != Motion::free) continue;
-    for (int a = 0; a < 3; ++a)
-      limit = std::min(limit, stable_dt_gershgorin(m_.numerics.integrator, rows.k[3 * i + a], rows.c[3 * i + a]));
-  }
-  return limit;
-}
+double Simulation::stability_limit() const { return stability_bound().limit; }
 
 }  // namespace dem

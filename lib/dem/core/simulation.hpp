@@ -9,6 +9,7 @@
 #include "dem/contact/contact_slots.hpp"
 #include "dem/core/model.hpp"
 #include "dem/core/neighbour_search.hpp"
+#include "dem/core/stability.hpp"
 
 namespace dem {
 
@@ -28,6 +29,17 @@ struct ContactView {
   int links;       // linked segments (1 for a linear contact)
 };
 
+/// The dashpots of a linear contact between masses m_i and m_j (m_j <= 0: a wall): explicit, or from
+/// the damping ratio (K20, K25) with the law's mass basis.
+struct Dashpots {
+  double eta_n = 0.0, eta_s = 0.0;  // [N·s/m]
+};
+Dashpots linear_dashpots(const PairLaw& law, double mass_i, double mass_j);
+
+/// The constants of a face contact between radii r_i and r_j (0: a wall) with reduced mass m_eff (M6,
+/// M7.3, M7.4, M19).
+FaceConstants face_constants(const PairLaw& law, double r_i, double r_j, double m_eff, double thickness);
+
 class Simulation {
  public:
   explicit Simulation(Model model);
@@ -44,11 +56,14 @@ class Simulation {
   Energies energies() const;
   std::vector<ContactView> contacts() const;
   std::size_t contact_count() const;  // touching pairs and wall contacts
+  /// Sum of |f_n n + f_s t| over the contacts that carry force, and their number (no allocation).
+  std::pair<double, std::size_t> contact_force_sum() const;
   /// Normal and shear force of the contact between element i and element j (or wall j); zero if none.
   ContactView contact(std::uint32_t i, std::uint32_t j, bool wall) const;
 
-  /// The stability limit of the whole assembly for the chosen integrator [s] (Gershgorin bound over
-  /// the current candidate contacts, stability.hpp); infinity if no contact is possible.
+  /// The time-step limit over every contact the case can form, with what sets it and what it assumes
+  /// (stability.hpp); the limit is infinity if no contact is possible.
+  StabilityBound stability_bound() const;
   double stability_limit() const;
   std::int64_t rebuilds() const { return rebuilds_; }
   /// The base plate's displacement and travel δ_B since the start (base_friction.hpp).

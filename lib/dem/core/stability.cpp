@@ -1,7 +1,14 @@
 #include "dem/core/stability.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "dem/core/simulation.hpp"
 
 namespace dem {
 
@@ -25,6 +32,478 @@ double stable_dt_gershgorin(Integrator integrator, double stiffness_row, double 
   const double omega = std::sqrt(stiffness_row);
   const double zeta = damping_row / (2.0 * omega);
   return stable_w(integrator, zeta) / omega;
+}
+
+double stable_dt_rates(Integrator integrator, double lambda, double c, double hopf_ratio) {
+  if (std::isnan(lambda) || std::isnan(c) || std::isnan(hopf_ratio)) return std::numeric_limits<double>::quiet_NaN();
+  if (lambda <= 0.0 && c <= 0.0) return std::numeric_limits<double>::infinity();
+  if (integrator == Integrator::k18) return 4.0 / (std::sqrt(c * c + 4.0 * lambda) + c);  // refs §1.5
+  const double flip = 12.0 / (std::sqrt(c * c + 12.0 * lambda) + c);                      // refs §1.5
+  return lambda > 0.0 ? std::min(hopf_ratio, flip) : flip;
+}
+
+std::vector<StabilityTerm> registered_stability_terms(const Model&) {
+  // Physics beyond the contacts registers its terms here, e.g. base friction:
+  //   terms.push_back(base_friction_stability_term(m));
+  return {};
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The bound over every contact the case can form.
+//
+// Mass-normalised, the stiffness matrix of the assembly is a sum of rank-one spring terms k b bᵀ over
+// the (x, y, φ) of the two bodies (b scaled by 1/√m, 1/√I). Block Gershgorin (Feingold–Varga, for a
+// symmetric matrix with 3 × 3 blocks per element) bounds every eigenvalue by
+//     λ ≤ max_i [ λ_max(A_ii) + Σ_j ‖A_ij‖₂ ].
+// Per contact of element i:
+//   - the normal springs put (Σk/m_i) n nᵀ into the translational part of A_ii. Their sum over the
+//     contacts is bounded by max_u Σ_c w_c cos²(θ_c − u), maximised over every ARRANGEMENT of contact
+//     directions θ_c the geometry allows (below);
+//   - a face law's moment levers add Σ k ℓ²/I_i (its lever terms cancel in the x–φ coupling: the segment
+//     positions are symmetric), shear springs add at most k_s(1/m_i + r_i²/I_i) each (the norm of
+//     their rank-one term);
+//   - with another element j, ‖A_ij‖ = k/√(m_i m_j) for the normal spring; the shear term's left and
+//     right vectors are orthogonal to the normal one's for a disk law, so the block norm is the larger
+//     of the two (the sum for a face law). A wall is not a degree of freedom: no A_ij.
+// The same bound with the dashpots gives c. The limit of each element is then the exact single-DOF
+// limit at (λ, c), decreasing in both (stable_dt_rates), with K19's Hopf branch Δt < η/K taken from the
+// smallest η/K of the springs (a mode's c/λ is a Rayleigh quotient, at least that).
+//
+// Arrangements: contacts sit at directions θ_c around the element; two element contacts are at
+// least 2 asin((1−ε)ρ/(r+ρ)) apart (ρ the smallest partner radius, r the largest radius of the
+// element's material, ε = 1 % overlap: a packed bed at equilibrium overlaps far less, about 1e-4 r
+// per layer in Kiyama's silo, refs §1.7), so at most 6 for equal disks; an element contact is at least
+// acos((r − (1−ε)ρ)/(r+ρ)) from a segment wall's contact (the wall blocks the half-plane behind it:
+// 90° for equal disks), any angle from a point wall's; wall contacts may coincide (a joint, a slit
+// corner). An element touches at most the walls of the largest set that lie pairwise within 2r of each
+// other, each wall once. The maximum over arrangements is found on a 0.5° grid with every gap rounded
+// down (so each real arrangement rounds to one on it), each grid point valued at the largest w cos²θ
+// within δ/2 of it: the grid maximum bounds the true one (and equals it for contacts along the axes).
+//
+// Shear springs of Coulomb (linear-law) contacts are counted only in `limit_sticking`: a shear mode
+// cannot grow past the slider's limit |f_s| = μ f_n, where its dashpot is switched off (K13). A face
+// law's shear (bonded lattices) always counts.
+
+namespace {
+
+constexpr double kOverlap = 0.01;
+constexpr int kGrid = 720;
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+struct Weights {  // the objective per contact: w cos²θ + b
+  double w = 0.0, b = 0.0;
+};
+
+/// One kind of contact of an element class: stiffness and damping weights, without (slip) and with
+/// (stick) the shear of Coulomb contacts.
+struct Kind {
+  bool present = false;
+  Weights k, c, k_stick, c_stick;
+  double hopf = inf, hopf_stick = inf;
+  std::vector<std::string> laws;
+  void merge(const Kind& o) {
+    if (!o.present) return;
+    auto up = [](double& a, double b) {  // the larger, and a NaN stays a NaN
+      if (std::isnan(b) || b > a) a = b;
+    };
+    auto mx = [&](Weights& a, const Weights& b) {
+      up(a.w, b.w);
+      up(a.b, b.b);
+    };
+    mx(k, o.k);
+    mx(c, o.c);
+    mx(k_stick, o.k_stick);
+    mx(c_stick, o.c_stick);
+    hopf = std::isnan(o.hopf) ? o.hopf : std::min(hopf, o.hopf);
+    hopf_stick = std::isnan(o.hopf_stick) ? o.hopf_stick : std::min(hopf_stick, o.hopf_stick);
+    for (const auto& l : o.laws)
+      if (std::find(laws.begin(), laws.end(), l) == laws.end()) laws.push_back(l);
+    present = true;
+  }
+};
+
+struct Stats {  // of the active elements of one material
+  int count = 0, free_count = 0;
+  double r_min = inf, r_max = 0.0, m_min = inf, m_max = 0.0, i_min = inf, vs2_max = 0.0;
+  // the free ones (the degrees of freedom whose bound is computed)
+  double fr_min = inf, fr_max = 0.0, fm_min = inf, fm_max = 0.0, fi_min = inf, fvs2_max = 0.0;
+  std::int64_t lightest = -1;
+};
+
+struct Arrangement {
+  double value = 0.0;
+  int d = 0, s = 0, p = 0;  // element, segment-wall and point-wall contacts
+};
+
+/// max Σ_c (w_c cos²θ_c + b_c) over arrangements (see above). types 0 = element, 1 = segment wall,
+/// 2 = point wall; gaps[a][b] in radians between consecutive contacts of types a, b.
+Arrangement arrangement_max(const Weights wt[3], const int max_count[3], const std::vector<std::pair<int, int>>& wall_sets,
+                            const double gaps[3][3]) {
+  // Point walls have no gap to anything, so they do not constrain the others: each sits at the
+  // direction of the largest value (w + b) and is added to the arrangement of the element and segment
+  // contacts (which the sequence below handles: a gap between consecutive contacts implies the gaps
+  // between all, as the segment–element gap is at least half the element–element gap).
+  auto points_with = [&](int s) {  // the most point walls that can join s segment walls
+    int best = s == 0 ? 0 : -1;
+    for (const auto& [ws, wp] : wall_sets)
+      if (s <= ws) best = std::max(best, wp);
+    return best;  // −1: s segment walls cannot touch at once
+  };
+  const double point_value = wt[2].w + wt[2].b;
+  const double delta = 2.0 * std::numbers::pi / kGrid;
+  int g[3][3];
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) g[a][b] = std::max(0, static_cast<int>(std::ceil(gaps[a][b] / delta - 1e-12)) - 1);
+  std::vector<double> f[3];
+  for (int t = 0; t < 3; ++t) {
+    f[t].resize(kGrid);
+    for (int p = 0; p < kGrid; ++p) {
+      // the largest value over the directions that round to this grid point, |θ − pδ| ≤ δ/2
+      const double lo = (p - 0.5) * delta, hi = (p + 0.5) * delta;
+      const double c1 = std::cos(lo), c2 = std::cos(hi);
+      const bool has_axis = std::floor(hi / std::numbers::pi) != std::floor(lo / std::numbers::pi) ||
+                            std::fmod(lo, std::numbers::pi) == 0.0;
+      const double cos2 = has_axis ? 1.0 : std::max(c1 * c1, c2 * c2);
+      f[t][static_cast<std::size_t>(p)] = wt[t].w * cos2 + wt[t].b;
+    }
+  }
+  const int nd = max_count[0] + 1, ns = max_count[1] + 1, np = 1;
+  const int states = nd * ns * np * 3;
+  auto idx = [&](int d, int s, int p, int t) { return ((d * ns + s) * np + p) * 3 + t; };
+  const double none = -inf;
+  std::vector<double> best(static_cast<std::size_t>(kGrid) * states), pm(best.size());
+  Arrangement out;
+  if (max_count[2] > 0 && points_with(0) > 0) out = {points_with(0) * point_value, 0, 0, points_with(0)};
+  // Every arrangement can be turned by π (cos² has period π) so that its first contact lies in [0, π).
+  for (int s0 = 0; s0 < kGrid / 2; ++s0) {
+    for (int t0 = 0; t0 < 2; ++t0) {
+      if (max_count[t0] == 0) continue;
+      std::fill(best.begin() + static_cast<std::ptrdiff_t>(s0) * states, best.end(), none);
+      std::fill(pm.begin() + static_cast<std::ptrdiff_t>(s0) * states, pm.end(), none);
+      for (int p = s0; p < kGrid; ++p) {
+        double* bp = &best[static_cast<std::size_t>(p) * states];
+        double* mp = &pm[static_cast<std::size_t>(p) * states];
+        if (p > s0) std::copy(mp - states, mp, mp);  // prefix max up to p − 1
+        for (int d = 0; d < nd; ++d)
+          for (int s = 0; s < ns; ++s)
+            for (int q = 0; q < np; ++q) {
+              const int points = points_with(s);
+              if (points < 0) continue;
+              for (int t = 0; t < 2; ++t) {
+                const int cnt[3] = {d, s, q};
+                if (cnt[t] == 0) continue;
+                double v = none;
+                if (d + s + q == 1) {
+                  if (t == t0 && p == s0) v = f[t][static_cast<std::size_t>(p)];
+                } else {
+                  int prev[3] = {d, s, q};
+                  --prev[t];
+                  for (int tp = 0; tp < 2; ++tp) {
+                    // a gap of 0 (walls) allows the same position: its predecessors have fewer
+                    // contacts and are already final at p
+                    const int pp = p - g[tp][t];
+                    if (pp < s0) continue;
+                    const double mv = pm[static_cast<std::size_t>(pp) * states + idx(prev[0], prev[1], prev[2], tp)];
+                    if (mv > none) v = std::max(v, mv + f[t][static_cast<std::size_t>(p)]);
+                  }
+                }
+                const int k = idx(d, s, q, t);
+                bp[k] = v;
+                mp[k] = std::max(mp[k], v);
+                if (v > none) {
+                  const bool single = d + s + q == 1;
+                  if (single || s0 + kGrid - p >= g[t][t0]) {
+                    const double total = v + (max_count[2] > 0 ? points * point_value : 0.0);
+                    if (total > out.value) out = {total, d, s, max_count[2] > 0 ? points : 0};
+                  }
+                }
+              }
+            }
+      }
+    }
+  }
+  return out;
+}
+
+double segment_distance(const Wall& a, const Wall& b) {
+  auto pd = [](Vec2 p, const Wall& w) { return norm(closest_point(w, p) - p); };
+  double d = std::min({pd(a.a, b), pd(a.b, b), pd(b.a, a), pd(b.b, a)});
+  if (a.kind == WallKind::segment && b.kind == WallKind::segment) {  // crossing segments
+    const Vec2 r = a.b - a.a, s = b.b - b.a;
+    const double den = r.x * s.y - r.y * s.x;
+    if (den != 0.0) {
+      const Vec2 qp = b.a - a.a;
+      const double t = (qp.x * s.y - qp.y * s.x) / den, u = (qp.x * r.y - qp.y * r.x) / den;
+      if (t >= 0 && t <= 1 && u >= 0 && u <= 1) d = 0.0;
+    }
+  }
+  return d;
+}
+
+/// The sets of walls that lie pairwise within `reach` of each other (an element of radius reach/2 can
+/// touch at most one such set at once), as (segment walls, point walls) counts of each maximal set.
+std::vector<std::pair<int, int>> wall_sets(const std::vector<const Wall*>& walls, double reach) {
+  const std::size_t n = walls.size();
+  std::vector<std::pair<int, int>> out;
+  auto composition = [&](std::uint32_t set) {
+    int sg = 0, pt = 0;
+    for (std::size_t k = 0; k < n; ++k)
+      if (set >> k & 1u) ++(walls[k]->kind == WallKind::segment ? sg : pt);
+    return std::pair<int, int>{sg, pt};
+  };
+  if (n == 0) return out;
+  if (n > 24) {  // too many to enumerate: every wall at once (conservative)
+    int sg = 0, pt = 0;
+    for (const Wall* w : walls) ++(w->kind == WallKind::segment ? sg : pt);
+    return {{sg, pt}};
+  }
+  std::vector<std::uint32_t> adj(n, 0);
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = 0; b < n; ++b)
+      if (a != b && segment_distance(*walls[a], *walls[b]) <= reach) adj[a] |= 1u << b;
+  // Bron–Kerbosch without pivoting (n ≤ 24): every maximal set
+  auto rec = [&](auto&& self, std::uint32_t r, std::uint32_t p, std::uint32_t x) -> void {
+    if (!p && !x) {
+      out.push_back(composition(r));
+      return;
+    }
+    while (p) {
+      const int v = std::countr_zero(p);
+      self(self, r | (1u << v), p & adj[static_cast<std::size_t>(v)], x & adj[static_cast<std::size_t>(v)]);
+      p &= ~(1u << v);
+      x |= 1u << v;
+    }
+  };
+  rec(rec, 0u, (1u << n) - 1u, 0u);
+  return out;
+}
+
+std::string law_name(const Model& m, std::int32_t law) {
+  const std::size_t nm = m.materials.size();
+  for (std::size_t a = 0; a < nm; ++a)
+    for (std::size_t b = a; b < nm; ++b)
+      if (m.law_of_pair[a * nm + b] == law)
+        return fmt::format("contact {} ({}–{})", law, m.materials[a].name, m.materials[b].name);
+  return fmt::format("contact {}", law);
+}
+
+/// The weights of one contact of an element of class `self` with a partner of class `other` (nullptr
+/// for a wall) under `law`.
+Kind contact_kind(const Model& m, std::int32_t law_index, const Stats& self, const Stats* other) {
+  const PairLaw& law = m.laws[static_cast<std::size_t>(law_index)];
+  Kind k;
+  k.present = true;
+  k.laws.push_back(law_name(m, law_index));
+  const double mi = self.fm_min, ii = self.fi_min, vsi = self.fvs2_max;
+  const bool wall = other == nullptr;
+  const double mj = wall ? 0.0 : other->m_min, ij = wall ? 0.0 : other->i_min, vsj = wall ? 0.0 : other->vs2_max;
+  if (law.kind == LawKind::linear) {
+    // dashpots: the largest over the partner masses present (η grows with the masses)
+    const double kn = law.linear.kn, ks = law.linear.ks;
+    double en = 0.0, es = 0.0, hn = inf, hs = inf;
+    const std::vector<double> partner_masses = wall ? std::vector<double>{0.0} : std::vector<double>{other->m_min, other->m_max};
+    for (double a : {self.fm_min, self.fm_max})
+      for (double b : partner_masses) {
+        const Dashpots d = linear_dashpots(law, a, b);
+        en = std::max(en, d.eta_n);
+        es = std::max(es, d.eta_s);
+        if (kn > 0.0) hn = std::min(hn, d.eta_n / kn);
+        if (ks > 0.0) hs = std::min(hs, d.eta_s / ks);
+      }
+    k.k.w = kn / mi;
+    k.c.w = en / mi;
+    if (!wall) {
+      k.k.b = kn / std::sqrt(mi * mj);
+      k.c.b = en / std::sqrt(mi * mj);
+    }
+    k.hopf = hn;
+    k.k_stick = {k.k.w, ks * vsi + (wall ? 0.0 : std::max(kn / std::sqrt(mi * mj), ks * std::sqrt(vsi * vsj)))};
+    k.c_stick = {k.c.w, es * vsi + (wall ? 0.0 : std::max(en / std::sqrt(mi * mj), es * std::sqrt(vsi * vsj)))};
+    k.hopf_stick = std::min(hn, hs);
+    return k;
+  }
+  // face law: the constants depend on both radii and the reduced mass: take the largest of each
+  const int n = law.face.segments;
+  double kn = 0.0, ks = 0.0, en = 0.0, es = 0.0, a = 0.0, hopf = inf;
+  for (double ri : {self.fr_min, self.fr_max}) {
+    std::vector<double> rjs = wall ? std::vector<double>{0.0}
+                                   : std::vector<double>{other->r_min, other->r_max, std::clamp(ri, other->r_min, other->r_max)};
+    for (double rj : rjs)
+      for (double ma : {self.fm_min, self.fm_max})
+        for (double mb : wall ? std::vector<double>{0.0} : std::vector<double>{other->m_min, other->m_max}) {
+          const double meff = wall ? ma : ma * mb / (ma + mb);
+          const FaceConstants fc = face_constants(law, ri, rj, meff, m.thickness);
+          kn = std::max(kn, fc.kn);
+          ks = std::max(ks, fc.ks);
+          en = std::max(en, fc.eta_n);
+          es = std::max(es, fc.eta_s);
+          a = std::max(a, fc.half_length);
+          if (fc.kn > 0.0) hopf = std::min(hopf, fc.eta_n / fc.kn);
+          if (fc.ks > 0.0) hopf = std::min(hopf, fc.eta_s / fc.ks);
+        }
+  }
+  double lever2 = 0.0;  // Σ ξ² a²
+  for (int s = 0; s < n; ++s) {
+    const double l = a * segment_xi(law.face.positions, n, s);
+    lever2 += l * l;
+  }
+  auto weights = [&](double kn_, double ks_) {
+    Weights w;
+    w.w = n * kn_ / mi;
+    w.b = kn_ * lever2 / ii + n * ks_ * vsi;
+    if (!wall) w.b += std::max(n * kn_ / std::sqrt(mi * mj), kn_ * lever2 / std::sqrt(ii * ij)) + n * ks_ * std::sqrt(vsi * vsj);
+    return w;
+  };
+  k.k = k.k_stick = weights(kn, ks);
+  k.c = k.c_stick = weights(en, es);
+  k.hopf = k.hopf_stick = hopf;
+  return k;
+}
+
+}  // namespace
+
+StabilityBound assembly_stability_bound(const Model& m, const std::vector<StabilityTerm>& extra) {
+  const Elements& e = m.elements;
+  const std::size_t nm = m.materials.size();
+  std::vector<Stats> st(nm);
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    if (!e.active[i]) continue;
+    Stats& s = st[static_cast<std::size_t>(e.material[i])];
+    const double vs2 = e.inv_mass[i] + e.radius[i] * e.radius[i] * e.inv_inertia[i];
+    ++s.count;
+    s.r_min = std::min(s.r_min, e.radius[i]);
+    s.r_max = std::max(s.r_max, e.radius[i]);
+    s.m_min = std::min(s.m_min, e.mass[i]);
+    s.m_max = std::max(s.m_max, e.mass[i]);
+    s.i_min = std::min(s.i_min, e.inertia[i]);
+    s.vs2_max = std::max(s.vs2_max, vs2);
+    if (e.motion[i] != Motion::free) continue;
+    ++s.free_count;
+    s.fr_min = std::min(s.fr_min, e.radius[i]);
+    s.fr_max = std::max(s.fr_max, e.radius[i]);
+    if (e.mass[i] < s.fm_min || s.lightest < 0) s.lightest = static_cast<std::int64_t>(i);
+    s.fm_min = std::min(s.fm_min, e.mass[i]);
+    s.fm_max = std::max(s.fm_max, e.mass[i]);
+    s.fi_min = std::min(s.fi_min, e.inertia[i]);
+    s.fvs2_max = std::max(s.fvs2_max, vs2);
+  }
+  StabilityBound out;
+  out.limit = out.limit_sticking = inf;
+  out.assumptions = fmt::format(
+      "every contact the case can form: equal-size neighbours at most 6 per element (fewer if the case has "
+      "fewer elements; 2 asin((1-e)rho/(r+rho)) apart, overlaps e <= {:.0f} % of a radius), a segment wall's "
+      "contact blocks the half-plane behind it, a point wall nothing, walls that lie within 2r of each other "
+      "may all touch at once; "
+      "worst directions on a 0.5 deg grid (each grid point taking the largest value within a quarter degree); block-Gershgorin bound, exact for one contact; shear springs of "
+      "Coulomb contacts counted only in the sticking limit",
+      100 * kOverlap);
+  bool first = true;
+  for (std::size_t a = 0; a < nm; ++a) {
+    const Stats& s = st[a];
+    if (s.free_count == 0) continue;
+    // element partners
+    Kind elem;
+    double rho_min = inf;
+    int partners = 0;
+    for (std::size_t b = 0; b < nm; ++b) {
+      const std::int32_t law = m.law_of_pair[a * nm + b];
+      const int others = st[b].count - (a == b ? 1 : 0);
+      if (law < 0 || others <= 0) continue;
+      elem.merge(contact_kind(m, law, s, &st[b]));
+      rho_min = std::min(rho_min, st[b].r_min);
+      partners += others;
+    }
+    // wall partners
+    Kind seg, pt;
+    std::vector<const Wall*> walls;
+    int n_seg = 0, n_pt = 0;
+    for (const Wall& w : m.walls) {
+      const std::int32_t law = m.law_of_pair[a * nm + static_cast<std::size_t>(w.material)];
+      if (law < 0) continue;
+      walls.push_back(&w);
+      (w.kind == WallKind::segment ? seg : pt).merge(contact_kind(m, law, s, nullptr));
+      ++(w.kind == WallKind::segment ? n_seg : n_pt);
+    }
+    // Moving walls may come closer than they start: then every wall counts.
+    bool moving = false;
+    for (const Wall* w : walls) moving = moving || w->drive >= 0;
+    const std::vector<std::pair<int, int>> sets =
+        moving ? std::vector<std::pair<int, int>>{{n_seg, n_pt}} : wall_sets(walls, 2.0 * s.fr_max * (1.0 + 1e-9));
+    const double r = s.fr_max;
+    int zd = 0;
+    double gap_dd = 0.0, gap_sd = 0.0;
+    if (partners > 0) {
+      gap_dd = 2.0 * std::asin((1.0 - kOverlap) * rho_min / (r + rho_min));
+      gap_sd = std::acos(std::clamp((r - (1.0 - kOverlap) * rho_min) / (r + rho_min), -1.0, 1.0));
+      zd = std::min(partners, static_cast<int>(std::floor(2.0 * std::numbers::pi / gap_dd + 1e-9)));
+      zd = std::min(zd, 12);
+    }
+    auto finite = [](const Kind& k) {
+      for (const Weights* w : {&k.k, &k.c, &k.k_stick, &k.c_stick})
+        if (!std::isfinite(w->w) || !std::isfinite(w->b)) return false;
+      return !std::isnan(k.hopf) && !std::isnan(k.hopf_stick);
+    };
+    if (!finite(elem) || !finite(seg) || !finite(pt)) {
+      out.limit = out.limit_sticking = std::numeric_limits<double>::quiet_NaN();
+      out.element = s.lightest;
+      out.law = "a stiffness, dashpot, mass or inertia that is not a finite number";
+      return out;
+    }
+    int max_seg = 0, max_pt = 0;
+    for (const auto& [ws, wp] : sets) max_seg = std::max(max_seg, ws), max_pt = std::max(max_pt, wp);
+    const int counts[3] = {zd, max_seg, max_pt};
+    const double gaps[3][3] = {{gap_dd, gap_sd, 0.0}, {gap_sd, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+    auto run = [&](Weights Kind::*field) {
+      const Weights w[3] = {elem.*field, seg.*field, pt.*field};
+      return arrangement_max(w, counts, sets, gaps);
+    };
+    const Arrangement ak = run(&Kind::k), ac = run(&Kind::c), aks = run(&Kind::k_stick), acs = run(&Kind::c_stick);
+    double xk = 0.0, xc = 0.0, xhopf = inf;
+    std::string xsrc;
+    for (const StabilityTerm& t : extra) {
+      double tk = 0.0, tc = 0.0;
+      for (std::size_t i = 0; i < e.size(); ++i) {
+        if (!e.active[i] || e.motion[i] != Motion::free || static_cast<std::size_t>(e.material[i]) != a) continue;
+        if (i < t.stiffness.size()) tk = std::max(tk, t.stiffness[i]);
+        if (i < t.damping.size()) tc = std::max(tc, t.damping[i]);
+      }
+      if (tk > 0.0 || tc > 0.0) xsrc += (xsrc.empty() ? "" : ", ") + t.source;
+      xk += tk;
+      xc += tc;
+      if (tk > 0.0) xhopf = std::min(xhopf, t.hopf_ratio);
+    }
+    const double hopf = std::min({elem.present ? elem.hopf : inf, seg.present ? seg.hopf : inf, pt.present ? pt.hopf : inf, xhopf});
+    const double hopf_s = std::min({elem.present ? elem.hopf_stick : inf, seg.present ? seg.hopf_stick : inf,
+                                    pt.present ? pt.hopf_stick : inf, xhopf});
+    const double lam = ak.value + xk, c = ac.value + xc;
+    const double limit = stable_dt_rates(m.numerics.integrator, lam, c, hopf);
+    const double limit_s = stable_dt_rates(m.numerics.integrator, aks.value + xk, acs.value + xc, hopf_s);
+    if (std::isnan(limit) || std::isnan(limit_s)) {
+      out.limit = out.limit_sticking = std::numeric_limits<double>::quiet_NaN();
+      out.element = s.lightest;
+      out.law = "a non-finite stiffness, damping or mass";
+      return out;
+    }
+    out.limit_sticking = std::min(out.limit_sticking, limit_s);
+    if (first || limit < out.limit) {
+      first = false;
+      out.limit = limit;
+      out.element = s.lightest;
+      std::vector<std::string> laws;
+      if (ak.d > 0) laws = elem.laws;
+      if (ak.s > 0) laws.insert(laws.end(), seg.laws.begin(), seg.laws.end());
+      if (ak.p > 0) laws.insert(laws.end(), pt.laws.begin(), pt.laws.end());
+      std::sort(laws.begin(), laws.end());
+      laws.erase(std::unique(laws.begin(), laws.end()), laws.end());
+      out.law = fmt::format("{}", fmt::join(laws, ", "));
+      if (!xsrc.empty()) out.law += (out.law.empty() ? "" : " + ") + xsrc;
+      out.element_contacts = ak.d;
+      out.wall_contacts = ak.s + ak.p;
+      out.stiffness_rate = lam;
+      out.damping_rate = c;
+    }
+  }
+  return out;
 }
 
 }  // namespace dem

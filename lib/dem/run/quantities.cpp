@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -57,6 +58,20 @@ double mean_increment(const Simulation& s) {
   return n ? sum / static_cast<double>(n) : 0.0;
 }
 
+double unbalanced_force_ratio(const Simulation& s) {
+  const Elements& e = s.model().elements;
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < e.size(); ++i)
+    if (e.active[i] && e.motion[i] == Motion::free) {
+      sum += std::hypot(e.fx[i], e.fy[i]);
+      ++n;
+    }
+  const auto [contact_sum, contacts] = s.contact_force_sum();
+  if (contacts == 0 || n == 0) return std::numeric_limits<double>::infinity();
+  return (sum / static_cast<double>(n)) / (contact_sum / static_cast<double>(contacts));
+}
+
 QuantityFn compile_quantity(const std::string& name, const Model& m) {
   const auto p = split(name, '.');
   auto bad = [&](const std::string& why) {
@@ -94,6 +109,7 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
     }
     return corner_slide(static_cast<std::size_t>(i), alpha_deg * std::numbers::pi / 180.0, m);
   }
+  if (name == "unbalanced_force_ratio") return unbalanced_force_ratio;
   long i = -1;
   try {
     i = p.empty() ? -1 : element_ref(p[0], m);
@@ -175,7 +191,7 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
       throw bad("unknown wall field (fx, fy, x, y)");
     }
   }
-  throw bad("unknown quantity (see lib/dem/quantities.hpp for the names)");
+  throw bad("unknown quantity (see lib/dem/run/quantities.hpp for the names)");
 }
 
 }  // namespace dem

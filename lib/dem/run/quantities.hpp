@@ -2,6 +2,7 @@
 // Named quantities of a running simulation, for the time-series CSV and probes:
 //   t, step, contacts, energy.kinetic, energy.potential, energy.elastic, energy.total,
 //   mean_increment                     mean of |Δx| and |Δy| over active elements [m]
+//   unbalanced_force_ratio             mean |resultant force| over free elements / mean |contact force|
 //   e<i>.x|y|phi|vx|vy|omega|fx|fy|moment     element i (state after the step)
 //   e<i>.px(a,b)  e<i>.py(a,b)        a body point at offset (a r, b r) in the element's frame [m]
 //   e<i>.gap.<wall>  e<i>.gap.e<j>     surface gap (negative: overlap) [m]
@@ -25,6 +26,11 @@ using QuantityFn = std::function<double(const Simulation&)>;
 
 /// Mean of |Δx| and |Δy| per step over the active free elements (Kiyama's static criterion) [m].
 double mean_increment(const Simulation& s);
+
+/// The unbalanced-force ratio as YADE's unbalancedForce() defines it: the mean over the active free
+/// elements of |resultant force| (contacts and gravity, this step) divided by the mean over the
+/// contacts that carry force of |contact force|. +inf when no contact carries force.
+double unbalanced_force_ratio(const Simulation& s);
 
 /// Compiles a quantity name against a model; throws std::invalid_argument naming what is wrong.
 QuantityFn compile_quantity(const std::string& name, const Model& m);

@@ -1,10 +1,12 @@
 #include "dem/run/run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cmath>
 #include <ctime>
 #include <limits>
+#include <optional>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -44,10 +46,14 @@ struct ProbeState {
   std::optional<double> value;
   double extreme = 0.0;
   bool have_extreme = false;
-  double st = 0.0, sq = 0.0, stt = 0.0, stq = 0.0, sn = 0.0;  // slope: least-squares sums
-  // restitution / duration
-  Vec2 n0;
-  double vn0 = 0.0;
+  double vn_prev = 0.0;  // normal relative velocity of the state before this step (approach positive)
+  double extreme_t = 0.0;                                    // time_of_max / time_of_min
+  double st = 0.0, sq = 0.0, stt = 0.0, stq = 0.0, sn = 0.0;  // slope: least-squares sums; mean: sq, sn
+  std::optional<double> crossing;
+  // restitution: the first contact event; duration: steps with force
+  Vec2 n_prev, n_in;     // contact normal of the state before this step, and at the first touch
+  double vn_in = 0.0, vn_out = 0.0;
+  bool touched = false, separated = false;
   std::int64_t force_steps = 0;
   bool in_contact = false;
 };
@@ -69,42 +75,137 @@ Vec2 body_velocity(const Simulation& s, std::uint32_t j, bool wall) {
   return {m.elements.vx[j], m.elements.vy[j]};
 }
 
+/// Normal relative velocity of i towards j (or wall j) along n, approach positive.
+double approach_velocity(const Simulation& s, std::uint32_t i, std::uint32_t j, bool wall, Vec2 n) {
+  const Elements& e = s.model().elements;
+  const Vec2 vi{e.vx[i], e.vy[i]};
+  return dot(vi - body_velocity(s, j, wall), n);
+}
+
 bool is_tty() { return isatty(STDERR_FILENO) != 0; }
 
-// The run loop's own state, for checkpoints: the energy bound, then per probe its accumulators.
-constexpr std::size_t kProbeNumbers = 16;
-std::vector<double> loop_state(double energy_limit, double potential0, const std::vector<ProbeState>& probes) {
-  std::vector<double> v{energy_limit, potential0};
+/// A quantity compiled with its location in the case file for errors.
+QuantityFn compile_located(const std::string& name, const std::string& location, const std::string& key, const Model& m) {
+  try {
+    return compile_quantity(name, m);
+  } catch (const std::invalid_argument& e) {
+    throw CaseError(fmt::format("{}: {}: {}", location, key, e.what()));
+  }
+}
+
+/// The energy scale of a run (what the blow-up bound is made of) [J]: the kinetic and elastic energy
+/// after the first step `e1`, plus the work gravity can do over the region the elements can reach, plus
+/// the work the drives can do.
+struct EnergyScale {
+  double total = 0.0, gravity_work = 0.0, drive_work = 0.0, drop = 0.0;
+};
+EnergyScale energy_scale(const Model& m, double e1) {
+  EnergyScale es;
+  const Elements& e = m.elements;
+  const double g = norm(m.gravity);
+  const double T = m.numerics.duration;
+  double mass = 0.0, v0 = 0.0;
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    if (!e.active[i] || e.motion[i] != Motion::free) continue;
+    mass += e.mass[i];
+    v0 = std::max(v0, std::hypot(e.vx[i], e.vy[i]));
+  }
+  double v_drive = 0.0;
+  for (const VelocityHistory& h : m.drives)
+    for (const Vec2& v : h.v) v_drive = std::max(v_drive, norm(v));
+  if (g > 0.0) {
+    // the drop along g: across the region of the elements and walls; if no wall lies beyond every
+    // element along g, an element may also fall freely for the whole run
+    const Vec2 down = m.gravity * (1.0 / g);
+    double lo = 1e300, hi = -1e300, elem_low = -1e300, wall_low = -1e300;
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      const double p = dot(down, Vec2{e.x[i], e.y[i]});
+      lo = std::min(lo, p - e.radius[i]);
+      hi = std::max(hi, p + e.radius[i]);
+      elem_low = std::max(elem_low, p + e.radius[i]);
+    }
+    for (const Wall& w : m.walls)
+      for (const Vec2& q : {w.a, w.b}) {
+        const double p = dot(down, q);
+        lo = std::min(lo, p);
+        hi = std::max(hi, p);
+        wall_low = std::max(wall_low, p);
+      }
+    es.drop = hi - lo;
+    const bool moving_walls = std::any_of(m.walls.begin(), m.walls.end(), [](const Wall& w) { return w.drive >= 0; });
+    if (wall_low < elem_low || moving_walls) es.drop += (v0 + v_drive) * T + 0.5 * g * T * T;
+    es.gravity_work = mass * g * es.drop;
+  }
+  // drives: an element thrown by a wall moving at v leaves at most at 2v; and the drive may lift the
+  // weight of every element over its travel
+  es.drive_work = v_drive > 0.0 ? 0.5 * mass * 4.0 * v_drive * v_drive + mass * g * v_drive * T : 0.0;
+  es.total = e1 + es.gravity_work + es.drive_work;
+  return es;
+}
+
+// The run loop's own state, for checkpoints: the blow-up bound and the settle window, then per probe
+// its accumulators. Every member of ProbeState that changes during a run must be listed here, or a
+// restart is no longer bit for bit (tests/lib/outputs_tests.cpp).
+struct LoopState {
+  double energy_limit = 0.0, potential0 = 0.0;
+  EnergyScale scale;
+  std::int64_t quiet_steps = 0;
+};
+constexpr std::size_t kLoopNumbers = 7;
+constexpr std::size_t kProbeNumbers = 25;
+std::vector<double> loop_state(const LoopState& l, const std::vector<ProbeState>& probes) {
+  std::vector<double> v{l.energy_limit,       l.potential0, l.scale.total, l.scale.gravity_work, l.scale.drive_work,
+                        l.scale.drop, static_cast<double>(l.quiet_steps)};
   for (const ProbeState& p : probes) {
     v.insert(v.end(), {p.prev_t, p.prev_v, p.value ? 1.0 : 0.0, p.value.value_or(0.0), p.extreme,
-                       p.have_extreme ? 1.0 : 0.0, p.st, p.sq, p.stt, p.stq, p.sn, p.n0.x, p.n0.y, p.vn0,
+                       p.have_extreme ? 1.0 : 0.0, p.vn_prev, p.extreme_t, p.st, p.sq, p.stt, p.stq, p.sn,
+                       p.crossing ? 1.0 : 0.0, p.crossing.value_or(0.0), p.n_prev.x, p.n_prev.y, p.n_in.x, p.n_in.y,
+                       p.vn_in, p.vn_out, p.touched ? 1.0 : 0.0, p.separated ? 1.0 : 0.0,
                        static_cast<double>(p.force_steps), p.in_contact ? 1.0 : 0.0});
   }
   return v;
 }
-void restore_loop_state(const std::vector<double>& v, double& energy_limit, double& potential0,
-                        std::vector<ProbeState>& probes) {
-  if (v.size() != 2 + kProbeNumbers * probes.size())
+void restore_loop_state(const std::vector<double>& v, LoopState& l, std::vector<ProbeState>& probes) {
+  if (v.size() != kLoopNumbers + kProbeNumbers * probes.size())
     throw CaseError("restart: the checkpoint's run state does not match the case's probes");
-  energy_limit = v[0];
-  potential0 = v[1];
-  const double* x = v.data() + 2;
+  l.energy_limit = v[0], l.potential0 = v[1];
+  l.scale.total = v[2], l.scale.gravity_work = v[3], l.scale.drive_work = v[4], l.scale.drop = v[5];
+  l.quiet_steps = static_cast<std::int64_t>(v[6]);
+  const double* x = v.data() + kLoopNumbers;
   for (ProbeState& p : probes) {
     p.prev_t = x[0], p.prev_v = x[1];
     if (x[2] != 0.0) p.value = x[3];
     else p.value.reset();
     p.extreme = x[4], p.have_extreme = x[5] != 0.0;
-    p.st = x[6], p.sq = x[7], p.stt = x[8], p.stq = x[9], p.sn = x[10];
-    p.n0 = {x[11], x[12]}, p.vn0 = x[13];
-    p.force_steps = static_cast<std::int64_t>(x[14]), p.in_contact = x[15] != 0.0;
+    p.vn_prev = x[6], p.extreme_t = x[7];
+    p.st = x[8], p.sq = x[9], p.stt = x[10], p.stq = x[11], p.sn = x[12];
+    if (x[13] != 0.0) p.crossing = x[14];
+    else p.crossing.reset();
+    p.n_prev = {x[15], x[16]}, p.n_in = {x[17], x[18]};
+    p.vn_in = x[19], p.vn_out = x[20];
+    p.touched = x[21] != 0.0, p.separated = x[22] != 0.0;
+    p.force_steps = static_cast<std::int64_t>(x[23]), p.in_contact = x[24] != 0.0;
     x += kProbeNumbers;
   }
 }
 
 }  // namespace
 
+void check_outputs(const Case& c) {
+  for (std::size_t k = 0; k < c.output.series.size(); ++k) {
+    const std::string at = k < c.output.series_locations.size() ? c.output.series_locations[k] : c.path.string();
+    compile_located(c.output.series[k], at, "output.series", c.model);
+  }
+  for (std::size_t k = 0; k < c.probes.size(); ++k) {
+    const ProbeSpec& p = c.probes[k];
+    const std::string at = p.location.empty() ? c.path.string() : p.location;
+    if (!p.quantity.empty()) compile_located(p.quantity, at, fmt::format("probe.{}.quantity", k), c.model);
+  }
+}
+
 RunResult run_case(const Case& c, const RunOptions& opt) {
   const double limit = check_case(c);  // throws CaseError before anything runs
+  check_outputs(c);
   // A restart reads its checkpoint first (it may lie in the output folder, which is cleared below).
   std::optional<Checkpoint> restart;
   if (!opt.restart.empty()) {
@@ -122,39 +223,44 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   // Outputs.
   const bool write = !opt.out_dir.empty();
   std::vector<QuantityFn> series;
-  for (const auto& name : c.output.series) {
-    try {
-      series.push_back(compile_quantity(name, m));
-    } catch (const std::invalid_argument& e) {
-      throw CaseError(fmt::format("{}: output.series: {}", c.path.string(), e.what()));
-    }
-  }
+  for (const auto& name : c.output.series) series.push_back(compile_quantity(name, m));
   std::vector<ProbeState> probes;
   for (const auto& p : c.probes) {
     ProbeState s;
     s.spec = &p;
     if (!p.quantity.empty()) {
-      try {
-        s.q = compile_quantity(p.quantity, m);
-      } catch (const std::invalid_argument& e) {
-        throw CaseError(fmt::format("{}: probe \"{}\": {}", c.path.string(), p.name, e.what()));
-      }
+      s.q = compile_quantity(p.quantity, m);
       s.prev_v = s.q(sim);
     } else {
-      s.n0 = contact_normal(sim, p.element, p.other, p.other_is_wall);
-      const Vec2 vi{m.elements.vx[p.element], m.elements.vy[p.element]};
-      s.vn0 = dot(vi - body_velocity(sim, p.other, p.other_is_wall), s.n0);
+      s.n_prev = contact_normal(sim, p.element, p.other, p.other_is_wall);
+      s.vn_prev = approach_velocity(sim, p.element, p.other, p.other_is_wall, s.n_prev);
     }
     probes.push_back(s);
   }
-  // The run's state from a checkpoint: the Simulation's, and the loop's (probes, energy bound).
-  double energy_limit = m.numerics.energy_limit;
-  double potential0 = sim.energies().potential;  // the blow-up criterion's zero of potential energy
+  // Blow-up criteria (README "Running a case"):
+  // - energy: the mechanical energy change (kinetic + elastic + potential − initial potential) may not
+  //   exceed F × the run's energy scale (energy_scale()); F = 4, or 2/(1 − r²) below the stability
+  //   limit (r = Δt/limit: a stable explicit scheme's energy swings by up to 1/(1 − r²) at the limit);
+  //   numerics.energy_limit replaces the bound;
+  // - kinematics: no element moves more than numerics.max_step_fraction × its radius in one step.
+  LoopState loop;
+  loop.energy_limit = m.numerics.energy_limit;
+  loop.potential0 = sim.energies().potential;  // the blow-up criterion's zero of potential energy
+  const double ratio = m.numerics.dt / limit;
+  const double energy_factor = ratio < 1.0 ? std::max(4.0, 2.0 / (1.0 - ratio * ratio)) : 4.0;
+  const double step_fraction2 = m.numerics.max_step_fraction * m.numerics.max_step_fraction;
+  const double gravity_norm = norm(m.gravity);
+  // The run's state from a checkpoint: the Simulation's, and the loop's (probes, energy bound, settle
+  // window).
   if (restart) {
     restore_simulation(sim, *restart, opt.restart_other_case);
-    if (opt.restart_other_case) potential0 = sim.energies().potential;
-    else restore_loop_state(restart->loop, energy_limit, potential0, probes);
+    if (opt.restart_other_case) loop.potential0 = sim.energies().potential;
+    else restore_loop_state(restart->loop, loop, probes);
   }
+  double& energy_limit = loop.energy_limit;
+  const double& potential0 = loop.potential0;
+  EnergyScale& scale = loop.scale;
+  std::int64_t& quiet_steps = loop.quiet_steps;  // consecutive steps meeting every settle criterion
   const std::int64_t first_step = sim.steps();
 
   // Outputs: a cleared folder (never two runs mixed), summary.json saying "running" until the end,
@@ -192,7 +298,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   std::optional<std::int64_t> checkpoint_step;
   auto checkpoint = [&] {
     if (!write) return;
-    write_checkpoint(checkpoint_file, sim, c, loop_state(energy_limit, potential0, probes));
+    write_checkpoint(checkpoint_file, sim, c, loop_state(loop, probes));
     checkpoint_step = sim.steps();
   };
   auto snapshot = [&] {
@@ -205,22 +311,6 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   write_row();
   snapshot();
 
-  // Blow-up criterion: the mechanical energy may not exceed a bound far above what the state after
-  // the first step (when the initial contacts carry their forces) and gravity over the extent of the
-  // assembly can supply.
-  double mg_extent = 0.0;
-  {
-    double mg = 0.0, xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-    for (std::size_t i = 0; i < m.elements.size(); ++i) {
-      mg += m.elements.mass[i] * norm(m.gravity);
-      xmin = std::min(xmin, m.elements.x[i]);
-      xmax = std::max(xmax, m.elements.x[i]);
-      ymin = std::min(ymin, m.elements.y[i]);
-      ymax = std::max(ymax, m.elements.y[i]);
-    }
-    mg_extent = mg * (std::hypot(xmax - xmin, ymax - ymin) + 1.0);
-  }
-
   RunResult res;
   res.stability_limit = limit;
   res.status = "completed";
@@ -232,7 +322,31 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
     sim.step();
     if (k == first_step && energy_limit <= 0.0) {
       const Energies e1 = sim.energies();
-      energy_limit = 1e3 * (e1.kinetic + e1.elastic + mg_extent) + 1e-300;
+      scale = energy_scale(m, e1.kinetic + e1.elastic);
+      energy_limit = energy_factor * scale.total + 1e-300;
+    }
+    {  // kinematic blow-up check: the largest increment of the step relative to the radius
+      const Elements& e = m.elements;
+      std::size_t worst = 0;
+      double worst2 = 0.0;
+      bool bad = false;
+      for (std::size_t i = 0; i < e.size(); ++i) {
+        const double d2 = (e.dx[i] * e.dx[i] + e.dy[i] * e.dy[i]) / (e.radius[i] * e.radius[i]);
+        if (!(d2 <= step_fraction2) && e.active[i]) {
+          if (!bad || !(d2 <= worst2)) worst = i, worst2 = d2;
+          bad = true;
+        }
+      }
+      if (bad) {
+        res.status = "blow-up";
+        res.message = fmt::format(
+            "stopped at t = {:.6g} s (step {}): element {} moved {:.4g} m in one step, {:.4g} of its radius "
+            "(numerics.max_step_fraction = {:.3g}: contacts would be missed) (the stability limit of this assembly "
+            "is {:.6g} s, dt = {:.6g} s)",
+            sim.time(), sim.steps(), worst, std::hypot(e.dx[worst], e.dy[worst]), std::sqrt(worst2),
+            m.numerics.max_step_fraction, limit, m.numerics.dt);
+        break;
+      }
     }
     // probes
     for (auto& p : probes) {
@@ -257,14 +371,70 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
           p.stq += tt * v;
           p.sn += 1.0;
         }
-      } else if (s.kind == ProbeKind::max || s.kind == ProbeKind::min) {
-        const double v = p.q(sim);
-        if (!p.have_extreme || (s.kind == ProbeKind::max ? v > p.extreme : v < p.extreme)) p.extreme = v;
-        p.have_extreme = true;
+      } else if (s.kind == ProbeKind::max || s.kind == ProbeKind::min || s.kind == ProbeKind::time_of_max ||
+                 s.kind == ProbeKind::time_of_min || s.kind == ProbeKind::mean || s.kind == ProbeKind::crossing) {
+        const double t = sim.time();
+        if (t >= s.from - 1e-12 && t <= s.to + 1e-12) {
+          const double v = p.q(sim);
+          if (s.kind == ProbeKind::mean) {
+            p.sq += v;
+            p.sn += 1.0;
+          } else if (s.kind == ProbeKind::crossing) {
+            const double a = p.prev_v - s.level, b = v - s.level;
+            const bool up = a < 0.0 && b >= 0.0, down = a > 0.0 && b <= 0.0;
+            if (!p.crossing && t > p.prev_t && ((s.direction >= 0 && up) || (s.direction <= 0 && down)))
+              p.crossing = p.prev_t + (t - p.prev_t) * (a / (a - b));
+          } else {
+            const bool want_max = s.kind == ProbeKind::max || s.kind == ProbeKind::time_of_max;
+            if (!p.have_extreme || (want_max ? v > p.extreme : v < p.extreme)) {
+              p.extreme = v;
+              p.extreme_t = t;
+            }
+            p.have_extreme = true;
+          }
+          p.prev_t = t;
+          p.prev_v = v;
+        } else if (s.kind == ProbeKind::crossing && t < s.from) {
+          p.prev_t = t;  // the sample before the window starts the first interval
+          p.prev_v = p.q(sim);
+        }
       } else {
         const ContactView cv = sim.contact(s.element, s.other, s.other_is_wall);
         p.in_contact = cv.fn != 0.0;
         if (p.in_contact) ++p.force_steps;
+        if (s.kind == ProbeKind::restitution) {
+          // the first contact event, along the normal at first touch: the approach velocity of the
+          // state before the first step with force, the separation velocity after the first step
+          // without force that follows (velocities are v_k, after the step's forces)
+          if (!p.touched && p.in_contact) {
+            p.touched = true;
+            p.n_in = p.n_prev;
+            p.vn_in = p.vn_prev;
+          } else if (p.touched && !p.separated && !p.in_contact) {
+            p.separated = true;
+            p.vn_out = approach_velocity(sim, s.element, s.other, s.other_is_wall, p.n_in);
+          }
+          if (!p.touched) {
+            p.n_prev = contact_normal(sim, s.element, s.other, s.other_is_wall);
+            p.vn_prev = approach_velocity(sim, s.element, s.other, s.other_is_wall, p.n_prev);
+          }
+        }
+      }
+    }
+    // settle: every criterion given holds at every step of a window of consecutive steps
+    if (c.stop.any() && sim.time() >= c.stop.settle_min_time) {
+      const double inc = (c.stop.settled_increment || c.stop.settled_increment_factor) ? mean_increment(sim) : 0.0;
+      bool quiet = true;
+      if (c.stop.settled_increment) quiet = inc < *c.stop.settled_increment;
+      if (quiet && c.stop.settled_increment_factor)
+        quiet = inc < *c.stop.settled_increment_factor * m.numerics.dt * m.numerics.dt * gravity_norm;  // Kiyama
+      if (quiet && c.stop.settled_force_ratio) quiet = unbalanced_force_ratio(sim) < *c.stop.settled_force_ratio;
+      quiet_steps = quiet ? quiet_steps + 1 : 0;
+      if (quiet_steps >= c.stop.settle_window) {
+        res.status = "settled";
+        res.message = fmt::format("settled at t = {:.6g} s (step {}): the criteria held for {} consecutive steps",
+                                  sim.time(), sim.steps(), quiet_steps);
+        break;
       }
     }
     const bool last = k + 1 == total_steps;
@@ -277,16 +447,15 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
         res.status = "blow-up";
         res.message = fmt::format("stopped at t = {:.6g} s (step {}): {} (the stability limit of this assembly is {:.6g} s, dt = {:.6g} s)",
                                   sim.time(), sim.steps(),
-                                  std::isfinite(mech) ? fmt::format("runaway energy {:.4g} J above the bound {:.4g} J", mech, energy_limit)
+                                  std::isfinite(mech) ? fmt::format("runaway energy {:.4g} J above the bound {:.4g} J{}", mech, energy_limit,
+                                                                    m.numerics.energy_limit > 0.0 ? std::string(" (numerics.energy_limit)") :
+                                                                    fmt::format(" = {:.3g} × (energy after the first step + gravity over {:.4g} m + drives {:.4g} J)",
+                                                                                energy_factor, scale.drop, scale.drive_work))
                                                       : std::string("the energy is not a number"),
                                   limit, m.numerics.dt);
         break;
       }
-      if (c.stop.settled_increment && sim.time() >= c.stop.settle_min_time &&
-          mean_increment(sim) < *c.stop.settled_increment) {
-        res.status = "settled";
-        break;
-      }
+
       if (show) {
         const auto now = std::chrono::steady_clock::now();
         if (now - last_print > std::chrono::milliseconds(500)) {
@@ -333,15 +502,23 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       case ProbeKind::min:
         if (p.have_extreme) v = p.extreme;
         break;
+      case ProbeKind::time_of_max:
+      case ProbeKind::time_of_min:
+        if (p.have_extreme) v = p.extreme_t;
+        break;
+      case ProbeKind::mean:
+        if (p.sn > 0.0) v = p.sq / p.sn;
+        break;
+      case ProbeKind::crossing:
+        v = p.crossing;
+        break;
       case ProbeKind::slope:
         if (p.sn >= 2.0) v = (p.sn * p.stq - p.st * p.sq) / (p.sn * p.stt - p.st * p.st);
         break;
-      case ProbeKind::restitution: {
-        if (p.in_contact || p.force_steps == 0 || p.vn0 == 0.0) break;  // not ended, or never touched
-        const Vec2 vi{m.elements.vx[s.element], m.elements.vy[s.element]};
-        v = -dot(vi - body_velocity(sim, s.other, s.other_is_wall), p.n0) / p.vn0;
+      case ProbeKind::restitution:
+        // the first contact event only; none if it never touched, never separated, or did not approach
+        if (p.touched && p.separated && p.vn_in > 0.0) v = -p.vn_out / p.vn_in;
         break;
-      }
       case ProbeKind::contact_duration:
         if (!p.in_contact && p.force_steps > 0) v = static_cast<double>(p.force_steps) * m.numerics.dt;
         break;

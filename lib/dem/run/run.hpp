@@ -28,7 +28,7 @@ struct RunOptions {
 
 struct RunResult {
   std::string status;   // "completed", "settled", "blow-up", "interrupted" (SIGINT / SIGTERM)
-  std::string message;  // what happened, for a blow-up
+  std::string message;  // what happened, for a blow-up or a settle stop
   std::int64_t steps = 0;
   double time = 0.0;                 // simulated [s]
   double wall_seconds = 0.0;
@@ -40,6 +40,10 @@ struct RunResult {
 
 /// The code version, build type and the like, recorded in every result file.
 nlohmann::json provenance();
+
+/// Checks the quantity names of output.series and of the probes against the model; throws CaseError
+/// with the file:line of the name (`dem2d check` and run_case call it before anything runs).
+void check_outputs(const Case& c);
 
 /// Runs a case. Throws CaseError for a wrong case or a checkpoint that does not fit it, OutputError
 /// (output_files.hpp) when a result file cannot be written.
