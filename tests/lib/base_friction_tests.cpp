@@ -251,3 +251,17 @@ TEST_CASE("Quantities: plate travel, and the corner slide of M23-M24", "[base_fr
   CHECK_THROWS_WITH(dem::compile_quantity("e0.corner_slide(abc)", sim.model()), Contains("degrees"));
   CHECK_THROWS_WITH(dem::compile_quantity("e7.corner_slide(30)", sim.model()), Contains("does not exist"));
 }
+
+TEST_CASE("The time-step guard counts base friction's dashpot: mu_B g_B / v_eps", "[base_friction][guard]") {
+  const auto path = test::write_temp("base_friction_guard.toml", kCase);
+  // v_ε = 0.01 mm/s: c = μ_B g_B / v_ε = 4.12e5 1/s, far above the contact rates of kCase
+  const dem::Case c = dem::read_case(path, {"base_friction.regularisation_speed=\"0.01 mm/s\"", "numerics.allow_unstable=true"});
+  const double rate = 0.42 * 9.80665 / 1e-5;
+  const dem::StabilityBound with = dem::Simulation(c.model).stability_bound();
+  dem::Model off = c.model;
+  off.base_plate.enabled = false;
+  const dem::StabilityBound without = dem::Simulation(off).stability_bound();
+  CHECK(with.limit < without.limit);
+  CHECK(with.limit * rate <= 2.0);  // an explicit dashpot alone is stable only for cΔt < 2
+  CHECK_THAT(with.law, Contains("base friction"));
+}

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "dem/core/base_friction.hpp"
 #include "dem/core/simulation.hpp"
 
 namespace dem {
@@ -42,10 +43,22 @@ double stable_dt_rates(Integrator integrator, double lambda, double c, double ho
   return lambda > 0.0 ? std::min(hopf_ratio, flip) : flip;
 }
 
-std::vector<StabilityTerm> registered_stability_terms(const Model&) {
-  // Physics beyond the contacts registers its terms here, e.g. base friction:
-  //   terms.push_back(base_friction_stability_term(m));
-  return {};
+std::vector<StabilityTerm> registered_stability_terms(const Model& m) {
+  // Physics beyond the contacts registers its terms here.
+  std::vector<StabilityTerm> terms;
+  if (m.base_plate.enabled) {
+    // Base friction (M21) below its regularisation speed is a dashpot towards the plate velocity of
+    // rate μ_B g_B / v_ε (translation) and its rotational analogue: added to every element's damping.
+    StabilityTerm t;
+    t.source = "base friction (M21), regularised below v_eps";
+    t.damping.resize(m.elements.size(), 0.0);
+    for (std::size_t i = 0; i < m.elements.size(); ++i) {
+      const BaseFrictionRates r = base_friction_rates(m.base_plate, m.elements, i);
+      t.damping[i] = std::max(r.translation, r.rotation);
+    }
+    terms.push_back(std::move(t));
+  }
+  return terms;
 }
 
 // ---------------------------------------------------------------------------------------------------

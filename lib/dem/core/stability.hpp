@@ -39,7 +39,7 @@ struct StabilityTerm {
   double hopf_ratio = 0.0;        // its c/λ [s] if it has stiffness (0: no stiffness)
 };
 
-/// Every extra term the model's physics registers (none yet: base friction will add its own here).
+/// Every extra term the model's physics registers: base friction's dashpot rates (base_friction.hpp).
 std::vector<StabilityTerm> registered_stability_terms(const Model& m);
 
 /// The time-step guard's answer: the limit, what sets it, and what it assumed.
