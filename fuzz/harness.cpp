@@ -30,6 +30,8 @@ void remove_scratch() {
   std::abort();
 }
 
+constexpr std::size_t kMaxCheckedElements = 2000;
+
 bool starts_with(std::string_view s, std::string_view prefix) { return s.substr(0, prefix.size()) == prefix; }
 
 }  // namespace
@@ -51,11 +53,16 @@ void write_file(const std::filesystem::path& path, const std::uint8_t* data, std
 void check_case_file(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
   try {
     const dem::Case c = dem::read_case(file, overrides);
-    (void)dem::check_case(c);
+    // check_case's neighbour search is quadratic when one element is much larger than the others
+    // (one cell for all): legitimate, but 10^4 elements take > 10 s under ASan + coverage. Larger
+    // models are read, not checked.
+    if (c.model.elements.size() <= kMaxCheckedElements) (void)dem::check_case(c);
   } catch (const dem::CaseError& e) {
     const std::string_view msg = e.what();
     if (!starts_with(msg, file.string() + ":") && !starts_with(msg, "--set "))
       finding("CaseError without a location: " + std::string(msg));
+    if (starts_with(msg, file.string() + ":0:"))  // a node toml++ did not read from the file
+      finding("CaseError at line 0: " + std::string(msg));
   } catch (const std::exception& e) {
     finding(std::string("exception other than dem::CaseError: ") + e.what());
   } catch (...) {

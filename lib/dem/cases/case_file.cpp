@@ -16,8 +16,8 @@ namespace {
 
 // ---- overrides --------------------------------------------------------------------------------
 
-bool is_index(const std::string& s) {
-  return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+bool is_index(const std::string& s) {  // at most 9 digits: std::stoul cannot overflow
+  return !s.empty() && s.size() <= 9 && s.find_first_not_of("0123456789") == std::string::npos;
 }
 
 /// Applies `path=value` to the tree: value is parsed as a TOML value when it is one ("1e-6", "true",
@@ -55,8 +55,9 @@ void apply_override(toml::table& root, const std::string& kv) {
       cur = arr->get(std::stoul(p));
     } else if (auto* tbl = cur->as_table()) {
       toml::node* next = tbl->get(p);
-      if (!next) {
-        tbl->insert(p, toml::table{});
+      if (!next) {  // a new table, parsed so that its source names the --set (errors about it point there)
+        toml::table made = toml::parse("t = {}", origin);
+        tbl->insert(p, std::move(*made.get_as<toml::table>("t")));
         next = tbl->get(p);
       }
       cur = next;
