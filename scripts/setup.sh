@@ -3,7 +3,11 @@
 # Package list and CMake targets: docs/toolchain.md.
 set -euo pipefail
 pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtomlplusplus-dev
-      libcli11-dev nlohmann-json3-dev libfmt-dev gnuplot-nox)
+      libcli11-dev nlohmann-json3-dev libfmt-dev gnuplot-nox
+      # sanitizers and fuzzing (scripts/sanitize.sh, scripts/fuzz.sh): clang 14, its runtime libraries
+      # (ASan, UBSan, libFuzzer: libclang_rt.fuzzer-x86_64.a, only a Recommends of clang) and
+      # llvm-symbolizer (package llvm) for readable stack traces
+      clang libclang-rt-dev llvm)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

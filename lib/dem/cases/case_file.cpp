@@ -19,8 +19,8 @@ namespace {
 
 // ---- overrides --------------------------------------------------------------------------------
 
-bool is_index(const std::string& s) {
-  return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+bool is_index(const std::string& s) {  // at most 9 digits: std::stoul cannot overflow
+  return !s.empty() && s.size() <= 9 && s.find_first_not_of("0123456789") == std::string::npos;
 }
 
 /// The index `s` if it is one below `size`, else nothing (no overflow for long digit strings).

@@ -1,0 +1,73 @@
+#include "harness.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <string_view>
+
+#include <unistd.h>
+
+#include "dem/cases/case_file.hpp"
+
+namespace fuzz {
+
+namespace {
+
+std::filesystem::path make_scratch() {
+  const std::filesystem::path dir = std::filesystem::is_directory("/dev/shm") ? std::filesystem::path("/dev/shm")
+                                                                             : std::filesystem::temp_directory_path();
+  return dir / ("dem2d_fuzz_" + std::to_string(::getpid()) + ".toml");
+}
+
+void remove_scratch() {
+  std::error_code ec;
+  std::filesystem::remove(scratch_file(), ec);
+}
+
+[[noreturn]] void finding(const std::string& what) {
+  std::fprintf(stderr, "\nFUZZ FINDING: %s\n", what.c_str());
+  std::abort();
+}
+
+constexpr std::size_t kMaxCheckedElements = 2000;
+
+bool starts_with(std::string_view s, std::string_view prefix) { return s.substr(0, prefix.size()) == prefix; }
+
+}  // namespace
+
+const std::filesystem::path& scratch_file() {
+  static const std::filesystem::path p = [] {
+    std::atexit(remove_scratch);
+    return make_scratch();
+  }();
+  return p;
+}
+
+void write_file(const std::filesystem::path& path, const std::uint8_t* data, std::size_t size) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  if (!out) finding("cannot write the scratch file " + path.string());
+}
+
+void check_case_file(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  try {
+    const dem::Case c = dem::read_case(file, overrides);
+    // check_case's neighbour search is quadratic when one element is much larger than the others
+    // (one cell for all): legitimate, but 10^4 elements take > 10 s under ASan + coverage. Larger
+    // models are read, not checked.
+    if (c.model.elements.size() <= kMaxCheckedElements) (void)dem::check_case(c);
+  } catch (const dem::CaseError& e) {
+    const std::string_view msg = e.what();
+    if (!starts_with(msg, file.string() + ":") && !starts_with(msg, "--set "))
+      finding("CaseError without a location: " + std::string(msg));
+    if (starts_with(msg, file.string() + ":0:"))  // a node toml++ did not read from the file
+      finding("CaseError at line 0: " + std::string(msg));
+  } catch (const std::exception& e) {
+    finding(std::string("exception other than dem::CaseError: ") + e.what());
+  } catch (...) {
+    finding("unknown exception");
+  }
+}
+
+}  // namespace fuzz

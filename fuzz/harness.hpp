@@ -1,0 +1,25 @@
+#pragma once
+// What both fuzz targets check: the input boundary either accepts a case (read_case + check_case,
+// the path `dem2d check` takes, without running it) or refuses it with a dem::CaseError whose message
+// starts with a location ("file:line: …" with line ≥ 1, "file: …" or "--set …"). Anything else is a finding and
+// aborts: another exception type (the app would print an unlocated "error: stoul"), a crash, or a
+// sanitizer report.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fuzz {
+
+/// A scratch file for this process (under /dev/shm when it exists), removed at exit.
+const std::filesystem::path& scratch_file();
+
+/// Writes `size` bytes to `path` (replacing it).
+void write_file(const std::filesystem::path& path, const std::uint8_t* data, std::size_t size);
+
+/// Reads and checks the case `file` with `overrides` (check_case only up to 2000 elements); aborts on
+/// anything but success or a located CaseError.
+void check_case_file(const std::filesystem::path& file, const std::vector<std::string>& overrides);
+
+}  // namespace fuzz

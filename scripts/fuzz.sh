@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Fuzzes the input boundary with libFuzzer (fuzz/README.md): fuzz_case (whole case text → read_case +
+# check_case) and fuzz_override (--set strings on a fixed case), built in build-san/ with ASan + UBSan.
+#   scripts/fuzz.sh --minutes 30        30 minutes in all, split evenly over the targets (the long run)
+#   scripts/fuzz.sh --seconds 60        60 s per target (CI)
+#   scripts/fuzz.sh --runs 20000        a fixed number of inputs per target (repeatable)
+#   --target case|override              one target only
+# The seeds are cases/, tests/lib/cases/ and fuzz/corpus/override/ (read only); what libFuzzer learns goes
+# to build-san/fuzz-work/<target>/. A finding (crash, sanitizer report, unlocated error) is written to
+# build-san/fuzz-findings/<target>/ and the script fails: fix it, then copy the input into
+# fuzz/regression/<target>/ so that ctest replays it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+per_target_seconds=60; runs=""; targets=(case override)
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --minutes) total=$(( $2 * 60 )); shift 2; per_target_seconds=-1 ;;
+    --seconds) per_target_seconds=$2; shift 2 ;;
+    --runs) runs=$2; shift 2 ;;
+    --target) targets=("$2"); shift 2 ;;
+    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    *) echo "fuzz.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
+  esac
+done
+[ "$per_target_seconds" -lt 0 ] && per_target_seconds=$(( total / ${#targets[@]} ))
+
+bash scripts/setup.sh
+if [ ! -f build-san/CMakeCache.txt ]; then
+  cmake -S . -B build-san -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DDEM2D_SANITIZE=ON -DDEM2D_FUZZ=ON > build-san.log 2>&1 \
+    || { cat build-san.log; exit 1; }
+fi
+cmake --build build-san -j"$(nproc 2>/dev/null || echo 2)" --target "${targets[@]/#/fuzz_}" >> build-san.log 2>&1 \
+  || { tail -50 build-san.log; exit 1; }
+
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+status=0
+for t in "${targets[@]}"; do
+  work=build-san/fuzz-work/$t; findings=build-san/fuzz-findings/$t
+  mkdir -p "$work" "$findings"
+  if [ "$t" = case ]; then seeds=(cases tests/lib/cases fuzz/regression/case)
+  else seeds=(fuzz/corpus/override fuzz/regression/override); fi
+  limit=(-max_total_time="$per_target_seconds")
+  [ -n "$runs" ] && limit=(-runs="$runs")
+  # -timeout: one input may take at most 10 s; -rss_limit_mb: 2 GB (a machine shared by many)
+  log=build-san/fuzz-$t.log
+  echo "fuzz: $t (${limit[*]})"
+  if build-san/fuzz/fuzz_"$t" "${limit[@]}" -timeout=10 -rss_limit_mb=2048 -max_len=16384 \
+       -dict=fuzz/case.dict -print_final_stats=1 -artifact_prefix="$findings/" \
+       "$work" "${seeds[@]}" > "$log" 2>&1; then
+    runs_done=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+    secs=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")
+    cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1)
+    echo "fuzz: $t: $runs_done inputs, $secs inputs/s, $cov, no finding"
+  else
+    status=1
+    echo "fuzz: $t: FINDING (log $log, input in $findings/):"
+    grep -E "FUZZ FINDING|ERROR:|runtime error|SUMMARY|^    #[0-9] " "$log" | head -30
+  fi
+done
+exit $status
