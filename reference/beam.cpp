@@ -83,4 +83,17 @@ double lattice_first_crack_ratio(int rows, int segments, SegmentPositions where)
   return 1.0 + 1.0 / (n * segments);
 }
 
+double stiffness_on_support_springs(double beam_stiffness, double support_stiffness) {
+  detail::require_positive("ref::stiffness_on_support_springs", "beam_stiffness", beam_stiffness);
+  detail::require_positive("ref::stiffness_on_support_springs", "support_stiffness", support_stiffness);
+  return 1.0 / (1.0 / beam_stiffness + 0.5 / support_stiffness);
+}
+
+double lattice_beam_stiffness(const BeamSection& s, double kn, double ks, int rows, int segments,
+                              SegmentPositions where) {
+  const LatticeModuli m = square_lattice_moduli(kn, ks);
+  return timoshenko_stiffness(s, m.young, m.shear_modulus, shear_coefficient_parabolic(),
+                              lattice_bending_factor(rows, segments, where));
+}
+
 }  // namespace ref

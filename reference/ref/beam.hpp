@@ -62,4 +62,14 @@ double lattice_bending_factor(int rows, int segments, SegmentPositions where);
 // First-crack load over P_max (beam-theory estimate, refs §4.4).
 double lattice_first_crack_ratio(int rows, int segments, SegmentPositions where);
 
+// Mid-span deflection of a beam resting on two linear support springs of stiffness k_c each (the
+// support contacts): each carries P/2, so δ = P/k_beam + P/(2 k_c) and P/δ is returned [N/m].
+// Exact for linear springs whose line of action is vertical (the beam's settlement is rigid).
+double stiffness_on_support_springs(double beam_stiffness, double support_stiffness);
+
+// Square PRE lattice beam (refs §4.3): Timoshenko with E_eff = k_n, G_eff = k_s/2, κ = 5/6 and
+// I_eff = I · lattice_bending_factor(rows, segments, where) [N/m]. k_n, k_s per unit strain [Pa].
+double lattice_beam_stiffness(const BeamSection& s, double kn, double ks, int rows, int segments,
+                              SegmentPositions where);
+
 }  // namespace ref

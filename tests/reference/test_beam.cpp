@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "ref/beam.hpp"
+#include "ref/registry.hpp"
 
 using Catch::Matchers::WithinRel;
 using ref::SegmentPositions;
@@ -86,4 +87,32 @@ TEST_CASE("Beam: invalid inputs are refused", "[beam]") {
   CHECK_THROWS_AS(ref::lattice_first_crack_ratio(0, 1, SegmentPositions::centres), std::invalid_argument);
   CHECK_THROWS_AS(ref::lattice_bending_factor(4, 3, SegmentPositions::face_ends), std::invalid_argument);
   CHECK_THROWS_AS(ref::shear_coefficient_cowper(0.5), std::invalid_argument);
+}
+
+TEST_CASE("Beam: support springs in series and the lattice beam through the registry (refs 4.3)", "[beam]") {
+  // Two support contacts of 172 kN/mm each carry P/2: δ = P/k + P/(2 k_c).
+  CHECK_THAT(ref::stiffness_on_support_springs(22465e3, 172e6) * mm,
+             WithinRel(1.0 / (1.0 / 22465.0 + 0.5 / 172000.0), 3e-5));
+  CHECK_THAT(ref::stiffness_on_support_springs(1e3, 1e300), WithinRel(1e3, 1e-12));
+  // 2 × 8 lattice, N = 5 at the centres: I_eff = I(1 − 1/100), paper constants.
+  const double k = ref::lattice_beam_stiffness(prism, 4300e6, 1720e6, 2, 5, SegmentPositions::centres);
+  const double by_hand = 1.0 / (0.1 * 0.1 * 0.1 / (48.0 * 4300e6 * 213333.333e-12 * 0.99) +
+                                0.1 / (4.0 * (5.0 / 6.0) * 860e6 * 0.0016));
+  CHECK_THAT(k, WithinRel(by_hand, 1e-8));
+  const std::map<std::string, double> a{{"b", 0.04}, {"h", 0.04}, {"L", 0.1}, {"kn", 4300e6}, {"ks", 1720e6},
+                                        {"n_h", 2},   {"N", 5},     {"ends", 0},  {"k_c", 172e6}};
+  CHECK_THAT(ref::evaluate("beam.lattice_stiffness", a), WithinRel(ref::stiffness_on_support_springs(k, 172e6), 1e-14));
+  auto ends = a;
+  ends["N"] = 2;
+  ends["ends"] = 1;
+  CHECK(ref::evaluate("beam.lattice_stiffness", ends) > ref::evaluate("beam.lattice_stiffness", a));  // I(1 + 2/n_h²)
+  // The continuum beam on the same supports, and its -21 % gap to the lattice without them.
+  const double kc = ref::evaluate("beam.continuum_stiffness",
+                                  {{"b", 0.04}, {"h", 0.04}, {"L", 0.1}, {"E", 4000e6}, {"nu", 1.0 / 6.0}, {"k_c", 1e300}});
+  CHECK_THAT(kc * mm, WithinRel(28287.0, 2e-5));
+  CHECK_THAT(ref::evaluate("beam.peak_load", {{"b", 0.04}, {"h", 0.04}, {"L", 0.1}, {"sigma_t", 5.6e6}}),
+             WithinRel(2389.3333, 1e-7));
+  CHECK_THAT(ref::evaluate("beam.first_crack_ratio", {{"n_h", 6}, {"N", 3}, {"ends", 0}}), WithinRel(1.0 + 1.0 / 18.0, 1e-14));
+  CHECK_THROWS_AS(ref::evaluate("beam.first_crack_ratio", {{"n_h", 6}, {"N", 3}, {"ends", 1}}), std::invalid_argument);
+  CHECK_THROWS_AS(ref::stiffness_on_support_springs(1e3, 0.0), std::invalid_argument);
 }

@@ -269,6 +269,15 @@ struct Reader {
   }
 };
 
+/// [stop] after_peak = { quantity = "platen.fy", drop = 0.5 }: stop past the peak of a quantity.
+void read_after_peak(const TableReader& r, StopSpec& stop) {
+  stop.after_peak_quantity = r.string("quantity");
+  stop.after_peak_drop = r.number("drop", 0.5);
+  if (!(stop.after_peak_drop > 0.0 && stop.after_peak_drop < 1.0))
+    r.fail("drop", "expected the fraction of the peak lost before stopping, in (0, 1)");
+  r.finish();
+}
+
 ProbeKind probe_kind(const std::string& s) {
   if (s == "value") return ProbeKind::value;
   if (s == "max") return ProbeKind::max;
@@ -479,6 +488,7 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     TableReader r(*t, "stop", file);
     c.stop.settled_increment = r.optional_quantity("settled_increment", dims::length);
     c.stop.settle_min_time = r.quantity("settle_min_time", dims::time, 0.0);
+    if (const toml::table* a = r.table("after_peak")) read_after_peak(TableReader(*a, "stop.after_peak", file), c.stop);
     r.finish();
   }
   // [[probe]]
@@ -493,6 +503,7 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
         p.from = r.quantity("from", dims::time);
         p.to = r.quantity("to", dims::time);
         if (!(p.to > p.from)) r.fail("to", "must be later than from");
+        p.against = r.string("against", "");
       }
     } else {
       p.element = static_cast<std::uint32_t>(r.integer("element", 0, static_cast<std::int64_t>(m.elements.size()) - 1));

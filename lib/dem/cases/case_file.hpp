@@ -29,6 +29,7 @@ struct ProbeSpec {
   std::string quantity;          // value/max/min: a series quantity name
   std::optional<double> at;      // value: time [s] (linear interpolation); none: end of run
   double from = 0.0, to = 0.0;   // slope: least-squares slope dq/dt over from ≤ t ≤ to [s]
+  std::string against;           // slope: dq/dx against this quantity instead of t (e.g. a stiffness)
   std::uint32_t element = 0;     // restitution / contact_duration: element i
   std::uint32_t other = 0;       //   and element j or wall j
   bool other_is_wall = false;
@@ -44,6 +45,10 @@ struct OutputSpec {
 struct StopSpec {
   std::optional<double> settled_increment;  // stop when the mean |Δu|, |Δv| per step falls below [m]
   double settle_min_time = 0.0;             // not before this time [s]
+  // after_peak: stop once |q| has fallen below (1 − drop) × its largest |q| so far (a load past its
+  // peak, e.g. the platen force of a bending test).
+  std::string after_peak_quantity;          // empty: no such criterion
+  double after_peak_drop = 0.5;             // fraction of the peak lost, in (0, 1)
 };
 
 struct Case {

@@ -43,6 +43,8 @@ struct ProbeState {
   double extreme = 0.0;
   bool have_extreme = false;
   double st = 0.0, sq = 0.0, stt = 0.0, stq = 0.0, sn = 0.0;  // slope: least-squares sums
+  QuantityFn x;                                               // slope `against`: abscissa (else t)
+  double x0 = 0.0;                                            //   its first value in the window
   // restitution / duration
   Vec2 n0;
   double vn0 = 0.0;
@@ -68,6 +70,13 @@ Vec2 body_velocity(const Simulation& s, std::uint32_t j, bool wall) {
 }
 
 bool is_tty() { return isatty(STDERR_FILENO) != 0; }
+
+/// Stop criterion `[stop] after_peak`: true once |q| has fallen to (1 − drop) × the largest |q| seen
+/// so far (updated here). A load–displacement test is then past its peak and can end.
+bool past_peak(double value, double drop, double& peak) {
+  peak = std::max(peak, std::abs(value));
+  return peak > 0.0 && std::abs(value) <= (1.0 - drop) * peak;
+}
 
 }  // namespace
 
@@ -104,6 +113,23 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       s.vn0 = dot(vi - body_velocity(sim, p.other, p.other_is_wall), s.n0);
     }
     probes.push_back(s);
+  }
+  for (auto& p : probes)
+    if (!p.spec->against.empty()) {
+      try {
+        p.x = compile_quantity(p.spec->against, m);
+      } catch (const std::invalid_argument& e) {
+        throw CaseError(fmt::format("{}: probe \"{}\": against: {}", c.path.string(), p.spec->name, e.what()));
+      }
+    }
+  QuantityFn peak_quantity;
+  double peak_so_far = 0.0;
+  if (!c.stop.after_peak_quantity.empty()) {
+    try {
+      peak_quantity = compile_quantity(c.stop.after_peak_quantity, m);
+    } catch (const std::invalid_argument& e) {
+      throw CaseError(fmt::format("{}: stop.after_peak.quantity: {}", c.path.string(), e.what()));
+    }
   }
   std::ofstream csv;
   std::vector<std::pair<double, std::string>> snapshots;
@@ -178,7 +204,12 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       } else if (s.kind == ProbeKind::slope) {
         const double t = sim.time();
         if (t >= s.from - 1e-12 && t <= s.to + 1e-12) {
-          const double v = p.q(sim), tt = t - s.from;  // centred on `from` for conditioning
+          double tt = t - s.from;  // centred on `from` (or the first abscissa) for conditioning
+          if (p.x) {
+            if (p.sn == 0.0) p.x0 = p.x(sim);
+            tt = p.x(sim) - p.x0;
+          }
+          const double v = p.q(sim);
           p.st += tt;
           p.sq += v;
           p.stt += tt * tt;
@@ -194,6 +225,10 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
         p.in_contact = cv.fn != 0.0;
         if (p.in_contact) ++p.force_steps;
       }
+    }
+    if (peak_quantity && past_peak(peak_quantity(sim), c.stop.after_peak_drop, peak_so_far)) {
+      res.status = "past peak";
+      break;
     }
     const bool last = k + 1 == total_steps;
     if (c.output.every > 0 && sim.steps() % c.output.every == 0 && !last) write_row();

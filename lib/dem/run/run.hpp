@@ -19,7 +19,7 @@ struct RunOptions {
 };
 
 struct RunResult {
-  std::string status;   // "completed", "settled", "blow-up"
+  std::string status;   // "completed", "settled", "past peak" ([stop] after_peak), "blow-up"
   std::string message;  // what happened, for a blow-up
   std::int64_t steps = 0;
   double time = 0.0;                 // simulated [s]
