@@ -284,6 +284,18 @@ const std::vector<Entry>& table() {
          const auto where = a("ends") != 0.0 ? SegmentPositions::face_ends : SegmentPositions::centres;
          return lattice_first_crack_ratio(a.count("n_h"), a.count("N"), where);
        }},
+      {{"beam.groove_first_crack_load",
+        "first-crack load of the lattice with the load disk (radius R) wedged between the two top "
+        "cores: beam theory with the wedge's thrust (ref/beam.hpp; refs §4.4 plus statics)",
+        {argument::beam_width, argument::beam_depth, argument::beam_span,
+         {"sigma_t", "Pa", "tensile strength of the face springs"}, argument::beam_rows,
+         argument::beam_segments, argument::beam_face_ends, {"R", "m", "load disk radius"}},
+        "N"},
+       [](const Args& a) {
+         const auto where = a("ends") != 0.0 ? SegmentPositions::face_ends : SegmentPositions::centres;
+         return groove_first_crack_load({a("b"), a("h"), a("L")}, a("sigma_t"), a.count("n_h"), a.count("N"),
+                                        where, a("R"));
+       }},
   };
   return entries;
 }

@@ -17,6 +17,8 @@ Mid-span deflection: the bottom-right corner (1, -1) of the bottom element left 
 point at (0, 0). The stiffness probe is the least-squares slope of the platen force against it.
 
 Usage: cases/beam/make_cases.py [n_h ...]   (default: 2 4 6 8 10); run from anywhere.
+       cases/beam/make_cases.py --sets n_h ...  prints the --set lists that turn any of these
+       cases into lattice n_h (the studies' [[variant]] set lists are made with it).
 The generated files are committed; rerun after editing this script.
 """
 import math
@@ -185,7 +187,7 @@ every = 100
 vtk = false
 
 [stop]
-after_peak = {{ quantity = "platen.fy", drop = 0.5 }}
+after_peak = {{ quantity = "platen.fy", drop = 0.5, from = "1 ms" }}  # after the load disk's start-up bounce
 
 [[probe]]
 name = "peak_load"
@@ -202,8 +204,42 @@ to = "6 ms"
 '''
 
 
+def geometry(nh):
+    """The keys that differ between lattices, as --set overrides of any mortar_*.toml."""
+    text = case_text(nh)
+    keys = {}
+    section, index = None, {}
+    for line in text.splitlines():
+        stripped = line.split("#")[0].strip()
+        if stripped.startswith("[["):
+            section = stripped.strip("[]")
+            index[section] = index.get(section, -1) + 1
+            continue
+        if stripped.startswith("["):
+            section = stripped.strip("[]")
+            index[section] = 0
+            continue
+        if "=" not in stripped or section is None:
+            continue
+        key, value = (x.strip() for x in stripped.split("=", 1))
+        wanted = {("lattice", "radius"), ("lattice", "origin"), ("lattice", "columns"), ("lattice", "rows"),
+                  ("element", "position"), ("wall", "from"), ("wall", "to"), ("numerics", "dt"),
+                  ("probe", "against"), ("output", "series")}
+        if (section, key) in wanted:
+            is_array = section in ("lattice", "element", "wall", "probe")
+            path = f"{section}.{index[section]}.{key}" if is_array else f"{section}.{key}"
+            keys[path] = value
+    return [f"{k}={v}" for k, v in keys.items()]
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
+    if sys.argv[1:2] == ["--sets"]:
+        # A study variant's set list for each lattice (any mortar_*.toml as the base case).
+        for nh in [int(a) for a in sys.argv[2:]]:
+            print(f"# {nh} x {4 * nh}")
+            print("set = [" + ",\n       ".join("'" + s + "'" for s in geometry(nh)) + "]")
+        return
     sizes = [int(a) for a in sys.argv[1:]] or [2, 4, 6, 8, 10]
     for nh in sizes:
         path = os.path.join(here, f"mortar_{nh}x{4 * nh}.toml")

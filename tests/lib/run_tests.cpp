@@ -127,48 +127,36 @@ TEST_CASE("The static criterion stops a settled run early", "[run]") {
 }
 
 TEST_CASE("The after-peak criterion stops a run once the force has dropped by the given fraction", "[run]") {
-  // A disk hits the floor (ζ = 0.3, contact ≈ 3.2 ms of the 20 ms asked for): the contact force rises
+  // A disk hits the floor (ζ = 0.3, contact ≈ 3.3 ms of the 20 ms asked for): the contact force rises
   // to its peak and falls to zero; with drop = 0.5 the run must end when it has halved, mid-contact.
   const auto out = fresh_dir("after_peak");
-  const std::vector<std::string> sets{"stop.after_peak.quantity=e0.fn.floor", "stop.after_peak.drop=0.5",
-                                      "probe.1.name=peak", "probe.1.kind=max", "probe.1.quantity=e0.fn.floor",
-                                      "probe.2.name=last", "probe.2.kind=value", "probe.2.quantity=e0.fn.floor"};
-  auto with = [&](std::vector<std::string> more) {
-    more.insert(more.begin(), sets.begin(), sets.end());
-    return more;
-  };
-  const auto r = run("cases/impact/disk_wall.toml", out, sets);
+  const std::string c = "tests/lib/cases/after_peak.toml";
+  const auto r = run(c, out);
   CHECK(r.status == "past peak");
   REQUIRE(r.probes.at("peak"));
   REQUIRE(r.probes.at("last"));
   const double peak = *r.probes.at("peak"), last = *r.probes.at("last");
   CHECK(peak > 0.0);
   CHECK(last <= 0.5 * peak);
-  CHECK(last > 0.4 * peak);  // the first step below half the peak, not the end of the contact
-  CHECK(r.steps > 160);      // past the peak (≈ 1.5 ms = 150 steps for ζ = 0.3) ...
-  CHECK(r.steps < 400);      // ... and long before the 2000 steps asked for
-  // A smaller drop stops earlier.
-  const auto r2 = run("cases/impact/disk_wall.toml", fresh_dir("after_peak2"), with({"stop.after_peak.drop=0.1"}));
+  CHECK(last > 0.45 * peak);  // the first step below half the peak, not the end of the contact
+  CHECK(r.steps > 140);       // past the peak (≈ 1.3 ms = 130 steps) ...
+  CHECK(r.steps < 330);       // ... and before the contact ends (≈ 3.3 ms), long before 2000 steps
+  // A smaller drop stops earlier; a criterion that starts after the contact never fires.
+  const auto r2 = run(c, fresh_dir("after_peak2"), {"stop.after_peak.drop=0.1"});
   CHECK(r2.status == "past peak");
   CHECK(r2.steps < r.steps);
+  const auto r3 = run(c, fresh_dir("after_peak3"), {"stop.after_peak.from=5e-3"});
+  CHECK(r3.status == "completed");
   // Wrong input is refused before anything runs.
-  CHECK_THROWS_WITH(run("cases/impact/disk_wall.toml", out, with({"stop.after_peak.drop=1.5"})),
-                    Contains("stop.after_peak") && Contains("drop"));
-  CHECK_THROWS_WITH(run("cases/impact/disk_wall.toml", out, with({"stop.after_peak.quantity=e7.fy"})),
-                    Contains("stop.after_peak.quantity"));
+  CHECK_THROWS_WITH(run(c, out, {"stop.after_peak.drop=1.5"}), Contains("stop.after_peak") && Contains("drop"));
+  CHECK_THROWS_WITH(run(c, out, {"stop.after_peak.quantity=e7.fy"}), Contains("stop.after_peak.quantity"));
 }
 
 TEST_CASE("A slope probe against another quantity gives dq/dx", "[run]") {
-  // Free flight at constant velocity (no contact within 5 ms: the disk starts 0.1 m above the floor
-  // moving up): y is linear in t, so d y / d t against t gives vy, and y against itself gives 1.
-  const std::vector<std::string> sets{"element.0.position=[0, 0.1]", "element.0.velocity=[0.3, 1.0]",
-                                      "numerics.duration=5e-3",
-                                      "probe.1.name=dy_dx", "probe.1.kind=slope", "probe.1.quantity=e0.y",
-                                      "probe.1.against=e0.x", "probe.1.from=1e-3", "probe.1.to=4e-3"};
-  const auto r = run("cases/impact/disk_wall.toml", {}, sets);
+  // e1 flies at constant velocity (0.3, 1.0) m/s: d y / d x = 1/0.3 over any window.
+  const std::string c = "tests/lib/cases/after_peak.toml";
+  const auto r = run(c, {}, {"stop.after_peak.from=1"});
   REQUIRE(r.probes.at("dy_dx"));
   CHECK_THAT(*r.probes.at("dy_dx"), Catch::Matchers::WithinRel(1.0 / 0.3, 1e-9));
-  auto bad = sets;
-  bad.push_back("probe.1.against=e0.nothing");
-  CHECK_THROWS_WITH(run("cases/impact/disk_wall.toml", {}, bad), Contains("against"));
+  CHECK_THROWS_WITH(run(c, {}, {"probe.2.against=e1.nothing"}), Contains("against"));
 }

@@ -1,6 +1,7 @@
 // Elastic beam theory and the square PRE lattice's beam (refs §4.1–§4.4).
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "ref/beam.hpp"
@@ -115,4 +116,33 @@ TEST_CASE("Beam: support springs in series and the lattice beam through the regi
   CHECK_THAT(ref::evaluate("beam.first_crack_ratio", {{"n_h", 6}, {"N", 3}, {"ends", 0}}), WithinRel(1.0 + 1.0 / 18.0, 1e-14));
   CHECK_THROWS_AS(ref::evaluate("beam.first_crack_ratio", {{"n_h", 6}, {"N", 3}, {"ends", 1}}), std::invalid_argument);
   CHECK_THROWS_AS(ref::stiffness_on_support_springs(1e3, 0.0), std::invalid_argument);
+}
+
+TEST_CASE("Beam: the load disk wedged in the top groove raises the first-crack load", "[beam]") {
+  const double P = ref::flexural_peak_load(prism, 5.6e6);
+  // By hand for 2 × 8 (r = 10 mm, R = 5 mm): sin θ = 2/3, t = tan θ/2 = 0.447214, contact height
+  // y_p = 30 + 10 cos θ = 37.4536 mm, e = 17.4536 mm. Without the lattice factors (a huge n_h·N would
+  // be needed), the wedge factor is 150/(150 − 6 t e + t h) = 1.2391.
+  const double t = 0.5 * (2.0 / 3.0) / std::sqrt(1.0 - 4.0 / 9.0), e = 30.0 + 10.0 * std::sqrt(5.0 / 9.0) - 20.0;
+  const double wedge = 150.0 / (150.0 - 6.0 * t * e + t * 40.0);
+  CHECK_THAT(wedge, WithinRel(1.23910, 1e-5));
+  const double p1 = ref::groove_first_crack_load(prism, 5.6e6, 2, 5, SegmentPositions::centres, 5e-3);
+  // With the lattice: M y_max/I_eff = (L/4 − t e) P (h/2)(1 − 1/10)/(I · 0.99), plus t P/A.
+  const double I = 213333.3333e-12, by_hand =
+      5.6e6 / ((0.025 - t * e * mm) * 0.02 * 0.9 / (I * 0.99) + t / 0.0016);
+  CHECK_THAT(p1, WithinRel(by_hand, 1e-8));
+  // Over P_max: the bending part is divided by the first-crack ratio 1.1, the tension part is not.
+  CHECK_THAT(p1 / P, WithinRel(1.0 / ((1.0 - t * e / 25.0) / 1.1 + t * 40.0 / 150.0), 1e-9));
+  // A vanishing load disk radius... is refused; a huge one approaches the plain estimate (θ → 0).
+  CHECK_THROWS_AS(ref::groove_first_crack_load(prism, 5.6e6, 2, 5, SegmentPositions::centres, 0.0), std::invalid_argument);
+  CHECK_THAT(ref::groove_first_crack_load(prism, 5.6e6, 2, 5, SegmentPositions::centres, 1e6) / P,
+             WithinRel(ref::lattice_first_crack_ratio(2, 5, SegmentPositions::centres), 1e-6));
+  // The wedge matters less on finer lattices (smaller cores under the same disk).
+  const double f6 = ref::groove_first_crack_load(prism, 5.6e6, 6, 5, SegmentPositions::centres, 5e-3) /
+                    (P * ref::lattice_first_crack_ratio(6, 5, SegmentPositions::centres));
+  const double f10 = ref::groove_first_crack_load(prism, 5.6e6, 10, 5, SegmentPositions::centres, 5e-3) /
+                     (P * ref::lattice_first_crack_ratio(10, 5, SegmentPositions::centres));
+  CHECK(f10 < f6);
+  CHECK(f6 < wedge);
+  CHECK(f10 > 1.0);
 }

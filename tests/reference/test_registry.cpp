@@ -72,6 +72,7 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"beam.continuum_stiffness", {"b", "h", "L", "E", "nu", "k_c"}},
       {"beam.peak_load", {"b", "h", "L", "sigma_t"}},
       {"beam.first_crack_ratio", {"n_h", "N", "ends"}},
+      {"beam.groove_first_crack_load", {"b", "h", "L", "sigma_t", "n_h", "N", "ends", "R"}},
   };
   const auto infos = ref::solvers();
   CHECK(infos.size() == expected.size());

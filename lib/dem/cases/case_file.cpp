@@ -269,10 +269,11 @@ struct Reader {
   }
 };
 
-/// [stop] after_peak = { quantity = "platen.fy", drop = 0.5 }: stop past the peak of a quantity.
+/// [stop] after_peak = { quantity = "platen.fy", drop = 0.5, from = "1 ms" }: stop past the peak.
 void read_after_peak(const TableReader& r, StopSpec& stop) {
   stop.after_peak_quantity = r.string("quantity");
   stop.after_peak_drop = r.number("drop", 0.5);
+  stop.after_peak_from = r.quantity("from", dims::time, 0.0);
   if (!(stop.after_peak_drop > 0.0 && stop.after_peak_drop < 1.0))
     r.fail("drop", "expected the fraction of the peak lost before stopping, in (0, 1)");
   r.finish();

@@ -49,6 +49,7 @@ struct StopSpec {
   // peak, e.g. the platen force of a bending test).
   std::string after_peak_quantity;          // empty: no such criterion
   double after_peak_drop = 0.5;             // fraction of the peak lost, in (0, 1)
+  double after_peak_from = 0.0;             // track the peak only from this time (skip start-up) [s]
 };
 
 struct Case {

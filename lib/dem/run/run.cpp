@@ -226,7 +226,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
         if (p.in_contact) ++p.force_steps;
       }
     }
-    if (peak_quantity && past_peak(peak_quantity(sim), c.stop.after_peak_drop, peak_so_far)) {
+    if (peak_quantity && sim.time() >= c.stop.after_peak_from && past_peak(peak_quantity(sim), c.stop.after_peak_drop, peak_so_far)) {
       res.status = "past peak";
       break;
     }
