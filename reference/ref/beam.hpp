@@ -83,6 +83,11 @@ double lattice_beam_stiffness(const BeamSection& s, double kn, double ks, int ro
 // e = y_p − h/2. The wedge lowers the moment more than the tension adds, so it RAISES the peak:
 // × 1.239 for 2 × 8 (r = 10 mm, R = 5 mm), × 1.129 for 6 × 24, × 1.086 for 10 × 40.
 // Friction at the disk (φ = 5° in M-D) would lower H by up to tan(θ − φ)/tan θ; not included.
+// CAUTION, measured (verification/beam_peak_load/README.md): the DEM does not follow this on 6 × 24
+// and 10 × 40. With frictionless contacts their peaks are 1.032 and 0.981 P_max, at or below the plain
+// estimate (1.033, 1.020), not × 1.13 / × 1.09 above it: the thrust acts across the mid-span face
+// itself, where beam theory (Saint-Venant) does not hold. Kept as a tested, rejected hypothesis; the
+// studies use lattice_first_crack_ratio.
 double groove_first_crack_load(const BeamSection& s, double tensile_strength, int rows, int segments,
                                SegmentPositions where, double load_disk_radius);
 
