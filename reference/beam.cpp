@@ -86,7 +86,8 @@ double lattice_first_crack_ratio(int rows, int segments, SegmentPositions where)
 
 double stiffness_on_support_springs(double beam_stiffness, double support_stiffness) {
   detail::require_positive("ref::stiffness_on_support_springs", "beam_stiffness", beam_stiffness);
-  detail::require_positive("ref::stiffness_on_support_springs", "support_stiffness", support_stiffness);
+  detail::require_positive("ref::stiffness_on_support_springs", "support_stiffness",
+                           support_stiffness);
   return 1.0 / (1.0 / beam_stiffness + 0.5 / support_stiffness);
 }
 

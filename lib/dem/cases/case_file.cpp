@@ -489,7 +489,8 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     TableReader r(*t, "stop", file);
     c.stop.settled_increment = r.optional_quantity("settled_increment", dims::length);
     c.stop.settle_min_time = r.quantity("settle_min_time", dims::time, 0.0);
-    if (const toml::table* a = r.table("after_peak")) read_after_peak(TableReader(*a, "stop.after_peak", file), c.stop);
+    if (const toml::table* a = r.table("after_peak"))
+      read_after_peak(TableReader(*a, "stop.after_peak", file), c.stop);
     r.finish();
   }
   // [[probe]]

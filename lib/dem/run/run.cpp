@@ -119,7 +119,8 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       try {
         p.x = compile_quantity(p.spec->against, m);
       } catch (const std::invalid_argument& e) {
-        throw CaseError(fmt::format("{}: probe \"{}\": against: {}", c.path.string(), p.spec->name, e.what()));
+        throw CaseError(
+            fmt::format("{}: probe \"{}\": against: {}", c.path.string(), p.spec->name, e.what()));
       }
     }
   QuantityFn peak_quantity;
@@ -226,7 +227,8 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
         if (p.in_contact) ++p.force_steps;
       }
     }
-    if (peak_quantity && sim.time() >= c.stop.after_peak_from && past_peak(peak_quantity(sim), c.stop.after_peak_drop, peak_so_far)) {
+    if (peak_quantity && sim.time() >= c.stop.after_peak_from &&
+        past_peak(peak_quantity(sim), c.stop.after_peak_drop, peak_so_far)) {
       res.status = "past peak";
       break;
     }
