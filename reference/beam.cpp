@@ -2,6 +2,7 @@
 // ref/beam.hpp for the derivations).
 #include "ref/beam.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "ref/require.hpp"
@@ -81,6 +82,40 @@ double lattice_first_crack_ratio(int rows, int segments, SegmentPositions where)
   const double n = rows;
   if (where == SegmentPositions::face_ends) return 1.0 + 2.0 / (n * n);
   return 1.0 + 1.0 / (n * segments);
+}
+
+double stiffness_on_support_springs(double beam_stiffness, double support_stiffness) {
+  detail::require_positive("ref::stiffness_on_support_springs", "beam_stiffness", beam_stiffness);
+  detail::require_positive("ref::stiffness_on_support_springs", "support_stiffness",
+                           support_stiffness);
+  return 1.0 / (1.0 / beam_stiffness + 0.5 / support_stiffness);
+}
+
+double lattice_beam_stiffness(const BeamSection& s, double kn, double ks, int rows, int segments,
+                              SegmentPositions where) {
+  const LatticeModuli m = square_lattice_moduli(kn, ks);
+  return timoshenko_stiffness(s, m.young, m.shear_modulus, shear_coefficient_parabolic(),
+                              lattice_bending_factor(rows, segments, where));
+}
+
+double groove_first_crack_load(const BeamSection& s, double tensile_strength, int rows, int segments,
+                               SegmentPositions where, double load_disk_radius) {
+  constexpr const char* name = "ref::groove_first_crack_load";
+  require_section(name, s);
+  require_lattice(name, rows, segments, where);
+  detail::require_positive(name, "tensile_strength", tensile_strength);
+  detail::require_positive(name, "load_disk_radius", load_disk_radius);
+  const double r = s.depth / (2.0 * rows);  // core radius
+  const double sin_theta = r / (r + load_disk_radius);
+  const double cos_theta = std::sqrt(1.0 - sin_theta * sin_theta);
+  const double t = 0.5 * sin_theta / cos_theta;                       // H / P
+  const double e = s.depth - r + r * cos_theta - 0.5 * s.depth;       // y_p − h/2
+  const double inertia = second_moment(s) * lattice_bending_factor(rows, segments, where);
+  const double y_max = where == SegmentPositions::face_ends
+                           ? 0.5 * s.depth
+                           : 0.5 * s.depth * (1.0 - 1.0 / (static_cast<double>(rows) * segments));
+  const double area = s.width * s.depth;
+  return tensile_strength / ((0.25 * s.span - t * e) * y_max / inertia + t / area);
 }
 
 }  // namespace ref

@@ -7,6 +7,7 @@
 #include "ref/base_friction.hpp"
 #include "ref/base_friction_m21.hpp"
 #include "ref/base_friction_travel.hpp"
+#include "ref/beam.hpp"
 #include "ref/block_on_incline.hpp"
 #include "ref/elastic_contact_2d.hpp"
 #include "ref/free_fall.hpp"
@@ -59,6 +60,13 @@ const SolverArgument elements_w{"n_w", "1", "square elements along W (integer)"}
 const SolverArgument elements_h{"n_h", "1", "square elements along H (integer)"};
 const SolverArgument plate_travel{"delta_B", "m", "base-plate travel"};
 const SolverArgument rotation{"theta", "rad", "rotation of the block, in [0, pi/2]"};
+const SolverArgument beam_width{"b", "m", "beam width (the out-of-plane thickness)"};
+const SolverArgument beam_depth{"h", "m", "beam depth"};
+const SolverArgument beam_span{"L", "m", "span between the supports"};
+const SolverArgument beam_rows{"n_h", "1", "element rows across the depth (integer)"};
+const SolverArgument beam_segments{"N", "1", "segments per face (integer)"};
+const SolverArgument beam_face_ends{"ends", "1", "0: segment centres (M13.1), 1: face ends (M13.2, N = 2)"};
+const SolverArgument support_stiffness{"k_c", "N/m", "stiffness of each support contact (in series)"};
 
 }  // namespace argument
 
@@ -234,6 +242,59 @@ const std::vector<Entry>& table() {
                                    .radius2 = a("r"),
                                    .line_load = a("q"),
                                    .approach_constant = a("c")});
+       }},
+      {{"beam.lattice_stiffness",
+        "P/delta at mid-span of the square PRE lattice beam: Timoshenko with E = kn, G = ks/2, "
+        "kappa = 5/6, I_eff (refs §4.3), on two support springs k_c",
+        {argument::beam_width, argument::beam_depth, argument::beam_span,
+         {"kn", "Pa", "face normal stiffness per unit strain"},
+         {"ks", "Pa", "face shear stiffness per unit strain"}, argument::beam_rows,
+         argument::beam_segments, argument::beam_face_ends, argument::support_stiffness},
+        "N/m"},
+       [](const Args& a) {
+         const BeamSection s{a("b"), a("h"), a("L")};
+         const auto where = a("ends") != 0.0 ? SegmentPositions::face_ends : SegmentPositions::centres;
+         return stiffness_on_support_springs(
+             lattice_beam_stiffness(s, a("kn"), a("ks"), a.count("n_h"), a.count("N"), where), a("k_c"));
+       }},
+      {{"beam.continuum_stiffness",
+        "P/delta at mid-span of the continuum beam: Timoshenko with E, G = E/(2(1+nu)), kappa = 5/6 "
+        "(refs §4.1), on two support springs k_c",
+        {argument::beam_width, argument::beam_depth, argument::beam_span,
+         {"E", "Pa", "Young's modulus"}, {"nu", "1", "Poisson's ratio"}, argument::support_stiffness},
+        "N/m"},
+       [](const Args& a) {
+         const BeamSection s{a("b"), a("h"), a("L")};
+         const double G = a("E") / (2.0 * (1.0 + a("nu")));
+         return stiffness_on_support_springs(
+             timoshenko_stiffness(s, a("E"), G, shear_coefficient_parabolic()), a("k_c"));
+       }},
+      {{"beam.peak_load",
+        "P_max = 2 sigma_t b h^2 / (3 L) of a beam in three-point bending (refs §4.1)",
+        {argument::beam_width, argument::beam_depth, argument::beam_span,
+         {"sigma_t", "Pa", "flexural tensile strength"}},
+        "N"},
+       [](const Args& a) { return flexural_peak_load({a("b"), a("h"), a("L")}, a("sigma_t")); }},
+      {{"beam.first_crack_ratio",
+        "first-crack load of the lattice over P_max: 1 + 1/(n_h N) at segment centres, 1 + 2/n_h^2 "
+        "at face ends (refs §4.4; an estimate)",
+        {argument::beam_rows, argument::beam_segments, argument::beam_face_ends},
+        "1"},
+       [](const Args& a) {
+         const auto where = a("ends") != 0.0 ? SegmentPositions::face_ends : SegmentPositions::centres;
+         return lattice_first_crack_ratio(a.count("n_h"), a.count("N"), where);
+       }},
+      {{"beam.groove_first_crack_load",
+        "first-crack load of the lattice with the load disk (radius R) wedged between the two top "
+        "cores: beam theory with the wedge's thrust (ref/beam.hpp; refs §4.4 plus statics)",
+        {argument::beam_width, argument::beam_depth, argument::beam_span,
+         {"sigma_t", "Pa", "tensile strength of the face springs"}, argument::beam_rows,
+         argument::beam_segments, argument::beam_face_ends, {"R", "m", "load disk radius"}},
+        "N"},
+       [](const Args& a) {
+         const auto where = a("ends") != 0.0 ? SegmentPositions::face_ends : SegmentPositions::centres;
+         return groove_first_crack_load({a("b"), a("h"), a("L")}, a("sigma_t"), a.count("n_h"), a.count("N"),
+                                        where, a("R"));
        }},
   };
   return entries;

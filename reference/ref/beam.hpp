@@ -62,4 +62,33 @@ double lattice_bending_factor(int rows, int segments, SegmentPositions where);
 // First-crack load over P_max (beam-theory estimate, refs §4.4).
 double lattice_first_crack_ratio(int rows, int segments, SegmentPositions where);
 
+// Mid-span deflection of a beam resting on two linear support springs of stiffness k_c each (the
+// support contacts): each carries P/2, so δ = P/k_beam + P/(2 k_c) and P/δ is returned [N/m].
+// Exact for linear springs whose line of action is vertical (the beam's settlement is rigid).
+double stiffness_on_support_springs(double beam_stiffness, double support_stiffness);
+
+// Square PRE lattice beam (refs §4.3): Timoshenko with E_eff = k_n, G_eff = k_s/2, κ = 5/6 and
+// I_eff = I · lattice_bending_factor(rows, segments, where) [N/m]. k_n, k_s per unit strain [Pa].
+double lattice_beam_stiffness(const BeamSection& s, double kn, double ks, int rows, int segments,
+                              SegmentPositions where);
+
+// First-crack load of the lattice loaded by a disk of radius R resting in the groove between the two
+// top cores at mid-span (cores of radius r = h/(2 n_h), centres at x = ±r, y = h − r), derived here
+// by statics and beam theory. Without friction the two contact forces act along the lines of centres,
+// at θ from the vertical, sin θ = r/(r + R): the disk wedges the two half-beams apart with
+//   H = (P/2) tan θ  at the contact height y_p = h − r + r cos θ.
+// At mid-span the section carries the tension H and the moment M = P L/4 − H (y_p − h/2), so the
+// outermost bottom spring (y_max below the axis, refs §4.4) breaks when
+//   σ_t = M y_max / I_eff + H / A   ⇒   P₁ = σ_t / [(L/4 − t e) y_max/I_eff + t/A],  t = tan θ/2,
+// e = y_p − h/2. The wedge lowers the moment more than the tension adds, so it RAISES the peak:
+// × 1.239 for 2 × 8 (r = 10 mm, R = 5 mm), × 1.129 for 6 × 24, × 1.086 for 10 × 40.
+// Friction at the disk (φ = 5° in M-D) would lower H by up to tan(θ − φ)/tan θ; not included.
+// CAUTION, measured (verification/beam_peak_load/README.md): the DEM does not follow this on 6 × 24
+// and 10 × 40. With frictionless contacts their peaks are 1.032 and 0.981 P_max, at or below the plain
+// estimate (1.033, 1.020), not × 1.13 / × 1.09 above it: the thrust acts across the mid-span face
+// itself, where beam theory (Saint-Venant) does not hold. Kept as a tested, rejected hypothesis; the
+// studies use lattice_first_crack_ratio.
+double groove_first_crack_load(const BeamSection& s, double tensile_strength, int rows, int segments,
+                               SegmentPositions where, double load_disk_radius);
+
 }  // namespace ref

@@ -126,3 +126,38 @@ TEST_CASE("The static criterion stops a settled run early", "[run]") {
   CHECK(r.steps > 100);
   CHECK(r.steps < 10000);
 }
+
+TEST_CASE("The after-peak criterion stops a run once the force has dropped by the given fraction", "[run]") {
+  // A disk hits the floor (ζ = 0.3, contact ≈ 3.3 ms of the 20 ms asked for): the contact force rises
+  // to its peak and falls to zero; with drop = 0.5 the run must end when it has halved, mid-contact.
+  const auto out = fresh_dir("after_peak");
+  const std::string c = "tests/lib/cases/after_peak.toml";
+  const auto r = run(c, out);
+  CHECK(r.status == "past peak");
+  REQUIRE(r.probes.at("peak"));
+  REQUIRE(r.probes.at("last"));
+  const double peak = *r.probes.at("peak"), last = *r.probes.at("last");
+  CHECK(peak > 0.0);
+  CHECK(last <= 0.5 * peak);
+  CHECK(last > 0.45 * peak);  // the first step below half the peak, not the end of the contact
+  CHECK(r.steps > 140);       // past the peak (≈ 1.3 ms = 130 steps) ...
+  CHECK(r.steps < 330);       // ... and before the contact ends (≈ 3.3 ms), long before 2000 steps
+  // A smaller drop stops earlier; a criterion that starts after the contact never fires.
+  const auto r2 = run(c, fresh_dir("after_peak2"), {"stop.after_peak.drop=0.1"});
+  CHECK(r2.status == "past peak");
+  CHECK(r2.steps < r.steps);
+  const auto r3 = run(c, fresh_dir("after_peak3"), {"stop.after_peak.from=5e-3"});
+  CHECK(r3.status == "completed");
+  // Wrong input is refused before anything runs.
+  CHECK_THROWS_WITH(run(c, out, {"stop.after_peak.drop=1.5"}), Contains("stop.after_peak") && Contains("drop"));
+  CHECK_THROWS_WITH(run(c, out, {"stop.after_peak.quantity=e7.fy"}), Contains("stop.after_peak.quantity"));
+}
+
+TEST_CASE("A slope probe against another quantity gives dq/dx", "[run]") {
+  // e1 flies at constant velocity (0.3, 1.0) m/s: d y / d x = 1/0.3 over any window.
+  const std::string c = "tests/lib/cases/after_peak.toml";
+  const auto r = run(c, {}, {"stop.after_peak.from=1"});
+  REQUIRE(r.probes.at("dy_dx"));
+  CHECK_THAT(*r.probes.at("dy_dx"), Catch::Matchers::WithinRel(1.0 / 0.3, 1e-9));
+  CHECK_THROWS_WITH(run(c, {}, {"probe.2.against=e1.nothing"}), Contains("against"));
+}

@@ -68,6 +68,11 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"base_friction.m21_rate", {"psi", "W", "H", "n_w", "n_h"}},
       {"base_friction.theta_m21", {"alpha", "delta_B", "W", "H", "n_w", "n_h"}},
       {"base_friction.slide_ratio", {"alpha", "phi_w"}},
+      {"beam.lattice_stiffness", {"b", "h", "L", "kn", "ks", "n_h", "N", "ends", "k_c"}},
+      {"beam.continuum_stiffness", {"b", "h", "L", "E", "nu", "k_c"}},
+      {"beam.peak_load", {"b", "h", "L", "sigma_t"}},
+      {"beam.first_crack_ratio", {"n_h", "N", "ends"}},
+      {"beam.groove_first_crack_load", {"b", "h", "L", "sigma_t", "n_h", "N", "ends", "R"}},
   };
   const auto infos = ref::solvers();
   CHECK(infos.size() == expected.size());

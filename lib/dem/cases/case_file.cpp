@@ -354,6 +354,16 @@ void check_base_friction_rate(const Model& m, const std::string& v_eps_location)
         m.base_plate.regularisation_speed * rate * m.numerics.dt, 1.0 / rate));
 }
 
+/// [stop] after_peak = { quantity = "platen.fy", drop = 0.5, from = "1 ms" }: stop past the peak.
+void read_after_peak(const TableReader& r, StopSpec& stop) {
+  stop.after_peak_quantity = r.string("quantity");
+  stop.after_peak_drop = r.number("drop", 0.5);
+  stop.after_peak_from = r.quantity("from", dims::time, 0.0);
+  if (!(stop.after_peak_drop > 0.0 && stop.after_peak_drop < 1.0))
+    r.fail("drop", "expected the fraction of the peak lost before stopping, in (0, 1)");
+  r.finish();
+}
+
 ProbeKind probe_kind(const std::string& s) {
   if (s == "value") return ProbeKind::value;
   if (s == "max") return ProbeKind::max;
@@ -607,6 +617,8 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     c.stop.settle_window = r.integer("settle_window", 1, std::int64_t{1} << 40, 1000);
     c.stop.settle_min_time = r.quantity("settle_min_time", dims::time, 0.0);
     rd.non_negative(r, "settle_min_time", c.stop.settle_min_time);
+    if (const toml::table* a = r.table("after_peak"))
+      read_after_peak(TableReader(*a, "stop.after_peak", file), c.stop);
     r.finish();
   }
   // [[probe]]
@@ -623,6 +635,7 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
       if (p.kind == ProbeKind::slope) {
         p.from = r.quantity("from", dims::time);
         p.to = r.quantity("to", dims::time);
+        p.against = r.string("against", "");
       } else if (p.kind != ProbeKind::value) {
         p.from = r.quantity("from", dims::time, 0.0);
         p.to = r.quantity("to", dims::time, std::numeric_limits<double>::infinity());

@@ -34,6 +34,7 @@ struct ProbeSpec {
                                  // mean, time_of_*, crossing: the window (to = +inf: to the end)
   double level = 0.0;            // crossing: the level [SI units of the quantity]
   int direction = 0;             // crossing: +1 upwards, −1 downwards, 0 either
+  std::string against;           // slope: dq/dx against this quantity instead of t (e.g. a stiffness)
   std::uint32_t element = 0;     // restitution / contact_duration: element i
   std::uint32_t other = 0;       //   and element j or wall j
   bool other_is_wall = false;
@@ -56,6 +57,11 @@ struct StopSpec {
   std::int64_t settle_window = 1000;               // steps
   double settle_min_time = 0.0;                    // not before this time [s]
   bool any() const { return settled_increment || settled_increment_factor || settled_force_ratio; }
+  // after_peak: stop once |q| has fallen below (1 − drop) × its largest |q| so far (a load past its
+  // peak, e.g. the platen force of a bending test).
+  std::string after_peak_quantity;                 // empty: no such criterion
+  double after_peak_drop = 0.5;                    // fraction of the peak lost, in (0, 1)
+  double after_peak_from = 0.0;                    // track the peak only from this time (skip start-up) [s]
 };
 
 struct Case {

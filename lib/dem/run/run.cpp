@@ -54,6 +54,8 @@ struct ProbeState {
   Vec2 n_prev, n_in;     // contact normal of the state before this step, and at the first touch
   double vn_in = 0.0, vn_out = 0.0;
   bool touched = false, separated = false;
+  QuantityFn x;                                               // slope `against`: abscissa (else t)
+  double x0 = 0.0;                                            //   its first value in the window
   std::int64_t force_steps = 0;
   bool in_contact = false;
 };
@@ -150,18 +152,19 @@ struct LoopState {
   double energy_limit = 0.0, potential0 = 0.0;
   EnergyScale scale;
   std::int64_t quiet_steps = 0;
+  double peak_so_far = 0.0;  // [stop] after_peak: the largest |q| so far
 };
-constexpr std::size_t kLoopNumbers = 7;
-constexpr std::size_t kProbeNumbers = 25;
+constexpr std::size_t kLoopNumbers = 8;
+constexpr std::size_t kProbeNumbers = 26;
 std::vector<double> loop_state(const LoopState& l, const std::vector<ProbeState>& probes) {
   std::vector<double> v{l.energy_limit,       l.potential0, l.scale.total, l.scale.gravity_work, l.scale.drive_work,
-                        l.scale.drop, static_cast<double>(l.quiet_steps)};
+                        l.scale.drop, static_cast<double>(l.quiet_steps), l.peak_so_far};
   for (const ProbeState& p : probes) {
     v.insert(v.end(), {p.prev_t, p.prev_v, p.value ? 1.0 : 0.0, p.value.value_or(0.0), p.extreme,
                        p.have_extreme ? 1.0 : 0.0, p.vn_prev, p.extreme_t, p.st, p.sq, p.stt, p.stq, p.sn,
                        p.crossing ? 1.0 : 0.0, p.crossing.value_or(0.0), p.n_prev.x, p.n_prev.y, p.n_in.x, p.n_in.y,
                        p.vn_in, p.vn_out, p.touched ? 1.0 : 0.0, p.separated ? 1.0 : 0.0,
-                       static_cast<double>(p.force_steps), p.in_contact ? 1.0 : 0.0});
+                       static_cast<double>(p.force_steps), p.in_contact ? 1.0 : 0.0, p.x0});
   }
   return v;
 }
@@ -171,6 +174,7 @@ void restore_loop_state(const std::vector<double>& v, LoopState& l, std::vector<
   l.energy_limit = v[0], l.potential0 = v[1];
   l.scale.total = v[2], l.scale.gravity_work = v[3], l.scale.drive_work = v[4], l.scale.drop = v[5];
   l.quiet_steps = static_cast<std::int64_t>(v[6]);
+  l.peak_so_far = v[7];
   const double* x = v.data() + kLoopNumbers;
   for (ProbeState& p : probes) {
     p.prev_t = x[0], p.prev_v = x[1];
@@ -185,8 +189,16 @@ void restore_loop_state(const std::vector<double>& v, LoopState& l, std::vector<
     p.vn_in = x[19], p.vn_out = x[20];
     p.touched = x[21] != 0.0, p.separated = x[22] != 0.0;
     p.force_steps = static_cast<std::int64_t>(x[23]), p.in_contact = x[24] != 0.0;
+    p.x0 = x[25];
     x += kProbeNumbers;
   }
+}
+
+/// Stop criterion `[stop] after_peak`: true once |q| has fallen to (1 − drop) × the largest |q| seen
+/// so far (updated here). A load–displacement test is then past its peak and can end.
+bool past_peak(double value, double drop, double& peak) {
+  peak = std::max(peak, std::abs(value));
+  return peak > 0.0 && std::abs(value) <= (1.0 - drop) * peak;
 }
 
 }  // namespace
@@ -200,7 +212,10 @@ void check_outputs(const Case& c) {
     const ProbeSpec& p = c.probes[k];
     const std::string at = p.location.empty() ? c.path.string() : p.location;
     if (!p.quantity.empty()) compile_located(p.quantity, at, fmt::format("probe.{}.quantity", k), c.model);
+    if (!p.against.empty()) compile_located(p.against, at, fmt::format("probe.{}.against", k), c.model);
   }
+  if (!c.stop.after_peak_quantity.empty())
+    compile_located(c.stop.after_peak_quantity, c.path.string(), "stop.after_peak.quantity", c.model);
 }
 
 RunResult run_case(const Case& c, const RunOptions& opt) {
@@ -237,6 +252,23 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
     }
     probes.push_back(s);
   }
+  for (auto& p : probes)
+    if (!p.spec->against.empty()) {
+      try {
+        p.x = compile_quantity(p.spec->against, m);
+      } catch (const std::invalid_argument& e) {
+        throw CaseError(
+            fmt::format("{}: probe \"{}\": against: {}", c.path.string(), p.spec->name, e.what()));
+      }
+    }
+  QuantityFn peak_quantity;
+  if (!c.stop.after_peak_quantity.empty()) {
+    try {
+      peak_quantity = compile_quantity(c.stop.after_peak_quantity, m);
+    } catch (const std::invalid_argument& e) {
+      throw CaseError(fmt::format("{}: stop.after_peak.quantity: {}", c.path.string(), e.what()));
+    }
+  }
   // Blow-up criteria (README "Running a case"):
   // - energy: the mechanical energy change (kinetic + elastic + potential − initial potential) may not
   //   exceed F × the run's energy scale (energy_scale()); F = 4, or 2/(1 − r²) below the stability
@@ -261,6 +293,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   const double& potential0 = loop.potential0;
   EnergyScale& scale = loop.scale;
   std::int64_t& quiet_steps = loop.quiet_steps;  // consecutive steps meeting every settle criterion
+  double& peak_so_far = loop.peak_so_far;
   const std::int64_t first_step = sim.steps();
 
   // Outputs: a cleared folder (never two runs mixed), summary.json saying "running" until the end,
@@ -364,7 +397,12 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       } else if (s.kind == ProbeKind::slope) {
         const double t = sim.time();
         if (t >= s.from - 1e-12 && t <= s.to + 1e-12) {
-          const double v = p.q(sim), tt = t - s.from;  // centred on `from` for conditioning
+          double tt = t - s.from;  // centred on `from` (or the first abscissa) for conditioning
+          if (p.x) {
+            if (p.sn == 0.0) p.x0 = p.x(sim);
+            tt = p.x(sim) - p.x0;
+          }
+          const double v = p.q(sim);
           p.st += tt;
           p.sq += v;
           p.stt += tt * tt;
@@ -436,6 +474,13 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
                                   sim.time(), sim.steps(), quiet_steps);
         break;
       }
+    }
+    if (peak_quantity && sim.time() >= c.stop.after_peak_from &&
+        past_peak(peak_quantity(sim), c.stop.after_peak_drop, peak_so_far)) {
+      res.status = "past peak";
+      res.message = fmt::format("stopped at t = {:.6g} s (step {}): {} fell to {:.4g} of its peak {:.6g}", sim.time(),
+                                sim.steps(), c.stop.after_peak_quantity, 1.0 - c.stop.after_peak_drop, peak_so_far);
+      break;
     }
     const bool last = k + 1 == total_steps;
     if (c.output.every > 0 && sim.steps() % c.output.every == 0 && !last) write_row();
