@@ -22,7 +22,7 @@ double restitution(ContactEnd end, double damping_ratio);
 // omega0 t_c as a function of zeta >= 0 (refs §1.2).
 // A: pi/sqrt(1 - zeta^2) for zeta < 1, +infinity for zeta >= 1.
 // B: 2 acos(zeta)/sqrt(1 - zeta^2) (zeta < 1), 2 (zeta = 1), 2 acosh(zeta)/sqrt(zeta^2 - 1)
-//    (zeta > 1). This single expression equals the spec's three arctan/logarithm branches (the
+//    (zeta > 1). This single expression equals the three arctan/logarithm branches (the
 //    tests check both) and has no special point at zeta = 1/sqrt(2).
 // Accuracy: a few ulp.
 double scaled_contact_duration(ContactEnd end, double damping_ratio);

@@ -3,7 +3,7 @@
 // per unit uniform approach), i.e. k/(2a) per unit length. A small rigid rotation θ about the face
 // centre compresses the layer by s·θ at s ∈ [−a, a], so the restoring moment is
 //   M = ∫ s (k/2a) s θ ds = k a² θ / 3,
-// the continuum that N discrete springs (model.md §2, M6) approximate (references.md §4.3: at the
+// the continuum that N discrete springs (docs/model.md §2, M6) approximate (docs/references.md §4.3: at the
 // segment centres Σ(aξᵢ)²/N = (a²/3)(1 − 1/N²)).
 // Accuracy: exact for the linear layer; a finite rotation changes it by O(θ²).
 

@@ -1,4 +1,4 @@
-// Base friction (M21, model.md §2; references.md §3.1, §3.7): the law on one element (bound,
+// Base friction (M21, docs/model.md §2; docs/references.md §3.1, §3.7): the law on one element (bound,
 // direction, moment law), its regularisation below v_ε, the motion of a free element dragged by the
 // plate against the closed form, the case keys and the quantities (plate travel, corner slide M23–M24).
 #include <catch2/catch.hpp>

@@ -122,7 +122,7 @@ TEST_CASE("case file: a missing key names the table's line", "[case]") {
 
 TEST_CASE("case file: a time step above the stability limit names the limit and allow_unstable", "[case]") {
   // Without shear (ks = 0) the assembly is one mass on a spring–dashpot: m = 0.5 kg, K = 1e5 N/m,
-  // ζ = 0.3 → K18 limit Δt = 2(√(1 + ζ²) − ζ)/ω₀ (references.md §1.5) = 1.488061/447.2136 s.
+  // ζ = 0.3 → K18 limit Δt = 2(√(1 + ζ²) − ζ)/ω₀ (docs/references.md §1.5) = 1.488061/447.2136 s.
   const double limit = 2.0 * (std::sqrt(1.09) - 0.3) / std::sqrt(1e5 / 0.5);
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", limit);

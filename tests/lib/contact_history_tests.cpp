@@ -1,4 +1,4 @@
-// Contact history across neighbour-list rebuilds (style.md §10: history keyed by a stable pair id).
+// Contact history across neighbour-list rebuilds (docs/style.md §10: history keyed by a stable pair id).
 // A run with a small Verlet skin rebuilds its candidate list many times; a run with a huge skin never
 // does. Both must give the same trajectory and forces to round-off: a history lost or mixed up at a
 // rebuild would reset an accumulated shear (or a bond) and show at once.

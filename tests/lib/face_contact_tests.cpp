@@ -1,4 +1,4 @@
-// Matsui & Nishimura's face law (model.md §2, M1–M16) at the level of one contact: segment positions,
+// Matsui & Nishimura's face law (docs/model.md §2, M1–M16) at the level of one contact: segment positions,
 // the tension cut-off, the Mohr–Coulomb limit, healing, the sign of the moment, exact against
 // linearised increments, and frame objectivity under a rigid rotation of a bonded pair.
 //
@@ -434,7 +434,7 @@ TEST_CASE("face: the literal reading of (M3.2) counts the rotation twice, Hisata
   }
 }
 
-// ---- frame objectivity (model.md §2: "a rigid-body rotation of a bonded pair produces no force") ----
+// ---- frame objectivity (docs/model.md §2: "a rigid-body rotation of a bonded pair produces no force") ----
 
 namespace {
 

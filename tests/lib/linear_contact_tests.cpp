@@ -1,4 +1,4 @@
-// Cundall's linear spring–dashpot contact (model.md §1, K6–K14): accumulation, dashpot, no tension,
+// Cundall's linear spring–dashpot contact (docs/model.md §1, K6–K14): accumulation, dashpot, no tension,
 // Coulomb slider, the two end rules; and, in a two-disk run, zero force when apart and equal and
 // opposite forces. Every expected number is worked out by hand in the comments from the equations.
 #include <catch2/catch.hpp>

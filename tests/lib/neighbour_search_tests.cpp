@@ -1,4 +1,4 @@
-// The cell-list neighbour search (model.md §1, K27) against an all-pairs oracle written here, on random
+// The cell-list neighbour search (docs/model.md §1, K27) against an all-pairs oracle written here, on random
 // element sets: sizes, radius distributions, inactive elements, skins, sparse clouds and degenerate
 // layouts. The result must be the same set of pairs, each once with i < j, sorted by (i, j).
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Pseudo-rectangle elements in whole runs (model.md §2): the order of the two elements of a pair does
+// Pseudo-rectangle elements in whole runs (docs/model.md §2): the order of the two elements of a pair does
 // not matter, the contact forces balance, an undamped bonded pair conserves energy, and a PRE with
 // N = 1, segment centres, linearised increments and disk mass reproduces the disk DEM (M18).
 #include <catch2/catch.hpp>
@@ -274,8 +274,8 @@ TEST_CASE(
 
 // With the overlap onset (both laws start a new contact from K times the geometric overlap), the
 // elastic force tracks the overlap, and the face and disk contacts end together: the whole run is the
-// disk DEM bit for bit (model.md §2, M18). With Cundall's increment onset they part at a separation
-// (test above): a spec conflict between K3 and the PRE pair rule, reported in the closing note.
+// disk DEM bit for bit (docs/model.md §2, M18). With Cundall's increment onset they part at a separation
+// (test above): a conflict between K3 and the PRE pair rule, docs/findings.md F5.
 TEST_CASE("PRE (M18): with the overlap onset the whole drop-in-a-box run is the disk DEM bit for bit",
           "[face][simulation][m18]") {
   const std::uint64_t seed = GENERATE(1, 2, 3);
@@ -307,7 +307,7 @@ dem::Model touching_at_start(bool pre) {
 
 }  // namespace
 
-// references.md §1.4, plain start: e_0 = K x(0) — the elastic forces of a contact present at the
+// docs/references.md §1.4, plain start: e_0 = K x(0) — the elastic forces of a contact present at the
 // start are those of the initial displacement (overlap 0.1 mm, no tangential displacement), the first
 // increment Δx_0 = v(0)Δt drives only the dashpots. Here Δu_s = 0.1 m/s · Δt: f_n = K_n·1e-4 = 10 N,
 // f_s = η_s Δu_s/Δt = 15 · 0.1 = 1.5 N.

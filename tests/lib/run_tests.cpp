@@ -93,7 +93,7 @@ TEST_CASE("Same inputs give the same outputs, bit for bit", "[run]") {
 }
 
 TEST_CASE("A blow-up stops the run with a message and keeps what was written", "[run]") {
-  // K19 without damping is unstable at every Δt (references.md §1.5): the guard refuses it, the
+  // K19 without damping is unstable at every Δt (docs/references.md §1.5): the guard refuses it, the
   // override lets it run, the energy criterion stops it.
   const auto out = fresh_dir("blowup");
   const std::vector<std::string> sets = {"numerics.integrator=K19", "numerics.dt=1e-3", "output.every=10",

@@ -1,6 +1,6 @@
 // The time-step guard (stability.hpp, Simulation::stability_limit): for one contact it is the exact
-// limit of references.md §1.5; more contacts on one element lower it; a bonded PRE lattice's limit is
-// well below the single-pair limit (references.md §4.6), and the lattice really is unstable at the
+// limit of docs/references.md §1.5; more contacts on one element lower it; a bonded PRE lattice's limit is
+// well below the single-pair limit (docs/references.md §4.6), and the lattice really is unstable at the
 // pair limit while it is stable at the guard's Δt.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -14,7 +14,7 @@ using Catch::Matchers::WithinRel;
 
 namespace {
 
-/// Exact limit on ω₀Δt of one damped mass (references.md §1.5), written out by hand.
+/// Exact limit on ω₀Δt of one damped mass (docs/references.md §1.5), written out by hand.
 double w_limit(dem::Integrator integ, double zeta) {
   if (integ == dem::Integrator::k18) return 2.0 * (std::sqrt(1.0 + zeta * zeta) - zeta);
   return std::min(2.0 * zeta, 2.0 * (std::sqrt(zeta * zeta + 3.0) - zeta));

@@ -1,4 +1,4 @@
-// Walls (model.md §1 "Walls"): a point wall contacts in every direction; a wall moving with a
+// Walls (docs/model.md §1 "Walls"): a point wall contacts in every direction; a wall moving with a
 // prescribed velocity history carries what rests on it; driven elements follow their drive.
 #include <catch2/catch.hpp>
 

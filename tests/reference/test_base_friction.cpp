@@ -23,7 +23,7 @@ constexpr double degree = std::numbers::pi / 180.0;
 constexpr double quarter_turn = std::numbers::pi / 2.0;
 constexpr double mm = 1e-3;
 
-// The seed block of M-C (model.md §3): W = 25 mm on the slope, H = 75 mm.
+// The seed block of M-C (docs/model.md §3): W = 25 mm on the slope, H = 75 mm.
 constexpr double seed_w = 0.025;
 constexpr double seed_h = 0.075;
 

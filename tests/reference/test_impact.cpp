@@ -1,4 +1,4 @@
-// Unit tests of ref/impact.hpp: the table of refs §1.2, the spec's branch formulas, Odeint event
+// Unit tests of ref/impact.hpp: the table of refs §1.2, the branch formulas of refs §1.2, Odeint event
 // detection, consistency with the oscillator closed form, and input validation.
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// Helpers for contact constants (model.md §1 "Constants", §2 (M25), references.md §1.2, §5).
+// Helpers for contact constants (docs/model.md §1 "Constants", §2 (M25), docs/references.md §1.2, §5).
 
 namespace dem {
 
@@ -7,7 +7,7 @@ namespace dem {
 /// b² = (8/π)(r/2)((1−ν²)/E) q  (contact half-width, K22b, r₁ = r₂ = r), and
 /// K_n = πE / (2(1−ν²)(c + 2 ln(4r/b)))  with c = 1.5 as printed in K23 (c = 2/3 from K22a).
 /// K_n depends on the line load q [N/m] through b; Table 1 of the paper is reproduced with
-/// q = 0.068 kgf/cm and c = 1.5 (references.md §5.2).
+/// q = 0.068 kgf/cm and c = 1.5 (docs/references.md §5.2).
 double hertz_2d_stiffness(double youngs_modulus, double poisson, double radius, double line_load,
                           double c = 1.5);
 
@@ -26,8 +26,8 @@ double lattice_kn(double youngs_modulus, double poisson);
 double lattice_ks(double youngs_modulus, double poisson);
 
 /// Matsui's single-pair time-step bound (M26), Δt < h_n √(m / K) with K the whole face's normal
-/// stiffness N·K_n (the paper prints k_n, a stiffness per unit area: model.md §2). It bounds one pair
-/// only; a bonded lattice needs the assembly bound of stability.hpp (references.md §4.6).
+/// stiffness N·K_n (the paper prints k_n, a stiffness per unit area: docs/model.md §2). It bounds one pair
+/// only; a bonded lattice needs the assembly bound of stability.hpp (docs/references.md §4.6).
 double pre_pair_time_step(double damping_ratio, double mass, double face_stiffness);
 
 }  // namespace dem

@@ -6,7 +6,7 @@ namespace dem {
 
 namespace {
 
-// Rotation part of the exact face displacement at ξ (model.md §2, (M2) with ξ → −ξ in our axes):
+// Rotation part of the exact face displacement at ξ (docs/model.md §2, (M2) with ξ → −ξ in our axes):
 // u_rot = −r1(1 − cos θ1) − r2(1 − cos θ2) − aξ(sin θ1 − sin θ2)            (M2.1)
 // v_rot =  r1 sin θ1 + r2 sin θ2 + aξ(cos θ1 − cos θ2)                        (M2.2)
 struct Trig {

@@ -1,5 +1,5 @@
 #pragma once
-// Matsui & Nishimura's pseudo-rectangle face contact (model.md §2, M1–M19): a straight face of length
+// Matsui & Nishimura's pseudo-rectangle face contact (docs/model.md §2, M1–M19): a straight face of length
 // 2a between two elements (or an element and a straight wall), cut into N segments, each with its own
 // spring, dashpot, tension cut-off and Mohr–Coulomb limit.
 //

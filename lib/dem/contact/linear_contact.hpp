@@ -1,13 +1,13 @@
 #pragma once
 // Cundall's linear spring–dashpot contact with no tension and a Coulomb slider, as used by
-// Kiyama & Fujimura (model.md §1, K6–K14). A value type holding the parameters and one pure function
+// Kiyama & Fujimura (docs/model.md §1, K6–K14). A value type holding the parameters and one pure function
 // that advances a contact's history by one step.
 #include <cmath>
 #include <cstdint>
 
 namespace dem {
 
-/// When a no-tension contact stops carrying force (references.md §1.2).
+/// When a no-tension contact stops carrying force (docs/references.md §1.2).
 enum class EndRule : std::uint8_t {
   elastic,  // convention A, Kiyama's K8: the contact opens when the elastic force e_n < 0
   total     // convention B: no attractive total force, f_n = max(e_n + d_n, 0)

@@ -1,6 +1,6 @@
 #pragma once
 // Base friction (M21): the body force and moment that a sliding base plate exerts on every element of
-// a base-friction model (model.md §2 "Base friction (M21)"; references.md §3.1, §3.7). The model lies
+// a base-friction model (docs/model.md §2 "Base friction (M21)"; docs/references.md §3.1, §3.7). The model lies
 // flat on a plate moving in its plane with velocity v_B; the gravity g_B presses each element onto the
 // plate with the normal load m g_B, and the plate's Coulomb friction μ_B drags the element:
 //

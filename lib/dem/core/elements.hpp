@@ -1,13 +1,13 @@
 #pragma once
 // Elements stored as contiguous arrays, one per field (structure of arrays).
-// Kiyama's explicit cycle (model.md §1, references.md §1.4) keeps, per element, the position that
+// Kiyama's explicit cycle (docs/model.md §1, docs/references.md §1.4) keeps, per element, the position that
 // already includes the latest increment, that increment, and the velocity of the previous step.
 #include <cstdint>
 #include <vector>
 
 namespace dem {
 
-enum class Shape : std::uint8_t { disk, pre };          // PRE: pseudo-rectangle element (model.md §2)
+enum class Shape : std::uint8_t { disk, pre };          // PRE: pseudo-rectangle element (docs/model.md §2)
 enum class Motion : std::uint8_t { free, fixed, driven };  // driven: prescribed velocity
 
 struct Elements {

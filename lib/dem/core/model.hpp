@@ -21,7 +21,7 @@ enum class Integrator : std::uint8_t {
 };
 enum class VelocityStart : std::uint8_t {
   plain,     // v_{−1} = v(0)
-  staggered  // v_{−1} = v(0) − a(0)Δt/2, so that v_0 = v(Δt/2) (references.md §1.4)
+  staggered  // v_{−1} = v(0) − a(0)Δt/2, so that v_0 = v(Δt/2) (docs/references.md §1.4)
 };
 enum class LawKind : std::uint8_t { linear, face };
 enum class MassBasis : std::uint8_t {
@@ -64,7 +64,7 @@ struct Numerics {
 
 /// A static preload: before the first step the element is moved rigidly (rotated by `rotation` about
 /// `about`) and its contacts take that motion as a static increment (springs loaded, no dashpot
-/// forces), e.g. "statically rotated by 0.1° about the face centre, then released" (model.md §3 M-B).
+/// forces), e.g. "statically rotated by 0.1° about the face centre, then released" (docs/model.md §3 M-B).
 struct Preload {
   std::uint32_t element = 0;
   double rotation = 0.0;  // [rad]
@@ -81,7 +81,7 @@ struct Model {
   std::vector<VelocityHistory> drives;
   Vec2 gravity;             // [m/s²]
   BasePlate base_plate;     // base friction (M21), base_friction.hpp; disabled by default
-  double thickness = 1.0;   // element depth l [m] (model.md: "per unit thickness" is l = 1)
+  double thickness = 1.0;   // element depth l [m] (docs/model.md: "per unit thickness" is l = 1)
   Numerics numerics;
 
   std::int32_t law_index(std::int32_t mat_a, std::int32_t mat_b) const {

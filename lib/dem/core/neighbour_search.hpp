@@ -1,5 +1,5 @@
 #pragma once
-// O(n) neighbour search (model.md §1, K27): a cell list with square cells of side 2 r_max + skin,
+// O(n) neighbour search (docs/model.md §1, K27): a cell list with square cells of side 2 r_max + skin,
 // producing every pair i < j whose gap is below the skin, sorted by (i, j). Buffers are reused
 // between builds, so a build allocates nothing once the sizes have settled.
 #include <cstdint>

@@ -90,7 +90,7 @@ Simulation::Simulation(Model model) : m_(std::move(model)) {
   double rmin = std::numeric_limits<double>::max();
   for (std::size_t i = 0; i < e.size(); ++i) rmin = std::min(rmin, e.radius[i]);
   skin_ = m_.numerics.skin > 0.0 ? m_.numerics.skin : (e.size() ? 0.25 * rmin : 0.0);
-  // Initial increments (references.md §1.4, "plain" start): Δx_0 = v(0)Δt.
+  // Initial increments (docs/references.md §1.4, "plain" start): Δx_0 = v(0)Δt.
   Elements& w = m_.elements;
   for (std::size_t i = 0; i < w.size(); ++i) {
     if (w.motion[i] == Motion::fixed) {
@@ -249,10 +249,10 @@ void Simulation::start_linear(LinearSlot& s, double overlap, double du_n, double
   s.eta_n = d.eta_n;
   s.eta_s = d.eta_s;
   // Contacts present at the start, or formed with the overlap onset, start from the geometric
-  // overlap: e_n = K_n δ after this step's increment is added (references.md §1.4: e_0 = K x(0)).
+  // overlap: e_n = K_n δ after this step's increment is added (docs/references.md §1.4: e_0 = K x(0)).
   if (step_ == 0 || law.onset == Onset::overlap) {
     s.h.en = law.linear.kn * (overlap - du_n);  // the face law's start, operation for operation (M18)
-    // The first increment of a plain start is the virtual v(0)Δt (references.md §1.4): it drives the
+    // The first increment of a plain start is the virtual v(0)Δt (docs/references.md §1.4): it drives the
     // dashpots, not the shear spring. A static preload is a real deformation: it loads the spring.
     s.h.es = preloading_ ? 0.0 : -law.linear.ks * du_s;
   }
@@ -469,7 +469,7 @@ void Simulation::sweep_face_walls(double inv_dt) {
 void Simulation::integrate() {
   Elements& e = m_.elements;
   const double dt = m_.numerics.dt;
-  // references.md §1.4: a staggered start takes half a velocity step first, v_0 = v(Δt/2).
+  // docs/references.md §1.4: a staggered start takes half a velocity step first, v_0 = v(Δt/2).
   const double dt_v = (step_ == 0 && m_.numerics.velocity_start == VelocityStart::staggered) ? 0.5 * dt : dt;
   const bool k19 = m_.numerics.integrator == Integrator::k19;
   const std::size_t n = e.size();

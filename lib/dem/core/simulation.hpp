@@ -1,5 +1,5 @@
 #pragma once
-// The explicit DEM cycle of Kiyama & Fujimura (model.md §1, references.md §1.4), for disks and
+// The explicit DEM cycle of Kiyama & Fujimura (docs/model.md §1, docs/references.md §1.4), for disks and
 // pseudo-rectangle elements: contact forces from the increments of the step (K5–K15, M3–M12),
 // velocities (K17), next increments (K18 or K19), positions.
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
-// Stability limits of the two explicit schemes (references.md §1.5) and the time-step guard for a
-// whole assembly (model.md §1 "Time step", §2 (M26); references.md §4.6).
+// Stability limits of the two explicit schemes (docs/references.md §1.5) and the time-step guard for a
+// whole assembly (docs/model.md §1 "Time step", §2 (M26); docs/references.md §4.6).
 #include <cstdint>
 #include <string>
 #include <vector>

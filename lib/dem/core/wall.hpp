@@ -1,5 +1,5 @@
 #pragma once
-// Walls: straight segments and points (model.md §1, "Walls"). A wall is a rigid body of infinite
+// Walls: straight segments and points (docs/model.md §1, "Walls"). A wall is a rigid body of infinite
 // mass; it may move with a prescribed velocity history. A point wall (the slit corners of the silo)
 // contacts in every direction.
 #include <cstdint>
