@@ -4,6 +4,7 @@
 //                                                        run a case, write series.csv, summary.json, vtk/
 //   dem2d check CASE [--set key=value]...                check a case and print what it resolves to
 //   dem2d study STUDY [--out DIR] [--jobs N] [--fresh]   run one verification study (verification/*/study.toml)
+//   dem2d sweep STUDY [--out DIR] [--jobs N] [--fresh]   run one sensitivity study (verification/sensitivity_*/sensitivity.toml)
 //   dem2d report [--studies DIR] [--out DIR]             write the verification report from study results
 #include <algorithm>
 #include <cmath>
@@ -23,6 +24,7 @@
 #include "dem/run/output_files.hpp"
 #include "dem/run/run.hpp"
 #include "dem/core/simulation.hpp"
+#include "engine/sensitivity.hpp"
 #include "engine/study.hpp"
 #include "report.hpp"
 #include "study_result.hpp"
@@ -164,6 +166,13 @@ int main(int argc, char** argv) {
   bool fresh = false;
   study->add_flag("--fresh", fresh, "Clear the cache of finished runs in the study folder first (run everything again)");
 
+  auto* sweep = app.add_subcommand("sweep", "Run one sensitivity study (one-at-a-time, Morris, Sobol') and write its result.json");
+  sweep->add_option("study", study_file, "Sensitivity study file (verification/sensitivity_<name>/sensitivity.toml)")
+      ->required()->check(CLI::ExistingFile);
+  sweep->add_option("--out", out_dir, "Output folder (default build/studies/<name>)");
+  sweep->add_option("-j,--jobs", jobs, "Runs in parallel")->check(CLI::PositiveNumber);
+  sweep->add_flag("--fresh", fresh, "Clear the cache of finished runs in the study folder first");
+
   std::string studies_dir = "build/studies", report_dir = "build/report";
   auto* rep = app.add_subcommand("report", "Write the verification report (index.html, index.md) from study results");
   rep->add_option("--studies", studies_dir, "Folder with one sub-folder per study holding result.json");
@@ -186,6 +195,13 @@ int main(int argc, char** argv) {
       o.use_cache = !fresh;
       const ver::StudyResult r = ver::run_study(study_file, o);
       return r.passed ? 0 : 1;
+    }
+    if (*sweep) {
+      ver::StudyOptions o;
+      o.out_dir = out_dir;
+      o.jobs = jobs;
+      o.use_cache = !fresh;
+      return ver::run_sensitivity(study_file, o).passed ? 0 : 1;
     }
     if (*rep) {
       report::Options o;

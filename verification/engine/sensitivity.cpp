@@ -1,0 +1,667 @@
+#include "engine/sensitivity.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "dem/cases/case_file.hpp"
+#include "dem/cases/units.hpp"
+#include "dem/run/output_files.hpp"
+#include "dem/run/run.hpp"
+#include "engine/convergence.hpp"
+#include "engine/sensitivity_estimators.hpp"
+#include "engine/sensitivity_functions.hpp"
+#include "engine/sensitivity_sampling.hpp"
+
+namespace fs = std::filesystem;
+
+namespace ver {
+
+namespace {
+
+using sens::Parameter;
+
+struct Sens {
+  fs::path file, root;
+  std::string name, title, requirement, case_path;
+  std::optional<sens::TestFunction> function;
+  std::vector<std::string> set, outputs;
+  std::vector<Parameter> params;
+  bool oat = false, morris = false, sobol = false;
+  std::size_t oat_points = 5;
+  std::size_t trajectories = 10;
+  int levels = 4;
+  std::uint64_t seed = 1;
+  std::size_t samples = 256, resamples = 1000;
+  double confidence = 0.95;
+  std::vector<std::size_t> convergence;     // function studies: Sobol' sample sizes for the error rate
+  std::optional<double> expected_order;
+  double order_band = 0.3;
+  int max_failed = 0;
+  nlohmann::json setup = nlohmann::json::object();
+};
+
+[[noreturn]] void fail_at(const Sens& s, const toml::node* n, const std::string& key, const std::string& what) {
+  throw std::runtime_error(n ? fmt::format("{}:{}: {}: {}", s.file.string(), n->source().begin.line, key, what)
+                             : fmt::format("{}: {}: {}", s.file.string(), key, what));
+}
+
+double quantity(const Sens& s, const toml::node& n, const std::string& key) {
+  if (auto d = n.value<double>()) return *d;
+  if (auto str = n.value_exact<std::string>()) {
+    try {
+      return dem::parse_quantity(*str).value;
+    } catch (const std::exception& e) {
+      fail_at(s, &n, key, e.what());
+    }
+  }
+  fail_at(s, &n, key, "expected a number or a string with a unit");
+}
+
+std::vector<std::string> strings(const Sens& s, const toml::table& t, const std::string& key) {
+  std::vector<std::string> out;
+  if (const toml::node* n = t.get(key)) {
+    const toml::array* a = n->as_array();
+    if (!a) fail_at(s, n, key, "expected an array of strings");
+    for (const auto& x : *a) {
+      auto v = x.value_exact<std::string>();
+      if (!v) fail_at(s, &x, key, "expected an array of strings");
+      out.push_back(*v);
+    }
+  }
+  return out;
+}
+
+std::size_t positive(const Sens& s, const toml::table& t, const char* key, std::size_t def, const std::string& where) {
+  const toml::node* n = t.get(key);
+  if (!n) return def;
+  auto v = n->value_exact<int64_t>();
+  if (!v || *v < 1) fail_at(s, n, where + "." + key, "expected a positive integer");
+  return static_cast<std::size_t>(*v);
+}
+
+Sens read_sens(const fs::path& file) {
+  Sens s;
+  s.file = file;
+  s.root = fs::absolute(file).parent_path().parent_path().parent_path();  // verification/<name>/sensitivity.toml
+  toml::table root;
+  try {
+    root = toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    throw std::runtime_error(fmt::format("{}:{}: syntax: {}", file.string(), e.source().begin.line, e.description()));
+  }
+  const toml::table* st = root["sensitivity"].as_table();
+  if (!st) fail_at(s, nullptr, "sensitivity", "missing [sensitivity] table");
+  s.name = (*st)["name"].value_or(fs::absolute(file).parent_path().filename().string());
+  if (s.name.empty() || s.name == "." || s.name == ".." ||
+      s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") != std::string::npos)
+    fail_at(s, st->get("name"), "sensitivity.name", fmt::format("expected a plain folder name, got \"{}\"", s.name));
+  s.title = (*st)["title"].value_or(s.name);
+  s.requirement = (*st)["requirement"].value_or(std::string());
+  s.case_path = (*st)["case"].value_or(std::string());
+  if (const toml::node* fn = st->get("function")) {
+    auto name = fn->value_exact<std::string>();
+    if (!name || (*name != "ishigami" && *name != "g" && *name != "linear"))
+      fail_at(s, fn, "sensitivity.function", "expected \"ishigami\", \"g\" or \"linear\"");
+    sens::TestFunction f{*name, {}};
+    if (const toml::array* c = (*st)["coefficients"].as_array())
+      for (const auto& x : *c) f.coefficients.push_back(quantity(s, x, "sensitivity.coefficients"));
+    if (f.name == "ishigami" && f.coefficients.size() != 2)
+      fail_at(s, st->get("coefficients"), "sensitivity.coefficients", "ishigami takes [a, b]");
+    if (f.name != "ishigami" && f.coefficients.empty())
+      fail_at(s, st, "sensitivity.coefficients", "expected one coefficient per parameter");
+    s.function = f;
+  }
+  if (s.case_path.empty() == !s.function.has_value())
+    fail_at(s, st, "sensitivity.case", "give either a case file or a test function (function = \"ishigami\" | \"g\" | \"linear\")");
+  s.set = strings(s, *st, "set");
+  s.outputs = strings(s, *st, "outputs");
+  if (s.function) s.outputs = {"f"};
+  if (s.outputs.empty()) fail_at(s, st, "sensitivity.outputs", "missing: the probes of the case to analyse");
+  for (const std::string& m : strings(s, *st, "methods")) {
+    if (m == "oat") s.oat = true;
+    else if (m == "morris") s.morris = true;
+    else if (m == "sobol") s.sobol = true;
+    else fail_at(s, st->get("methods"), "sensitivity.methods", fmt::format("expected oat, morris or sobol, got \"{}\"", m));
+  }
+  if (!s.oat && !s.morris && !s.sobol) fail_at(s, st, "sensitivity.methods", "missing: any of [\"oat\", \"morris\", \"sobol\"]");
+  s.max_failed = static_cast<int>((*st)["max_failed_runs"].value_or(int64_t{0}));
+  if (const toml::table* su = (*st)["setup"].as_table())
+    for (const auto& [k, v] : *su) {
+      if (auto x = v.value<double>()) s.setup[std::string(k.str())] = *x;
+      else if (auto y = v.value_exact<std::string>()) s.setup[std::string(k.str())] = *y;
+    }
+  const toml::node* pn = root.get("parameter");
+  if (!pn || !pn->as_array()) fail_at(s, pn, "parameter", "expected [[parameter]] tables (path, low, high)");
+  for (const auto& n : *pn->as_array()) {
+    const toml::table* t = n.as_table();
+    if (!t) fail_at(s, &n, "parameter", "expected [[parameter]] tables");
+    Parameter p;
+    p.path = (*t)["path"].value_or(std::string());
+    if (p.path.empty() && !s.function) fail_at(s, &n, "parameter.path", "missing: the --set path, e.g. contact.0.kn");
+    p.label = (*t)["label"].value_or(p.path.empty() ? fmt::format("x{}", s.params.size() + 1) : p.path);
+    if (!t->get("low") || !t->get("high")) fail_at(s, &n, "parameter", fmt::format("\"{}\": need low and high", p.label));
+    p.low = quantity(s, *t->get("low"), "parameter.low");
+    p.high = quantity(s, *t->get("high"), "parameter.high");
+    const std::string dist = (*t)["distribution"].value_or(std::string("uniform"));
+    if (dist != "uniform" && dist != "log-uniform")
+      fail_at(s, t->get("distribution"), "parameter.distribution", "expected \"uniform\" or \"log-uniform\"");
+    p.log_uniform = dist == "log-uniform";
+    if (!(p.high > p.low) || (p.log_uniform && !(p.low > 0.0)))
+      fail_at(s, &n, "parameter", fmt::format("\"{}\": need low < high (and low > 0 for log-uniform)", p.label));
+    s.params.push_back(p);
+  }
+  if (s.function && sens::dimension(*s.function) != s.params.size())
+    fail_at(s, pn, "parameter", fmt::format("the function {} takes {} inputs, {} parameters given", s.function->name,
+                                            sens::dimension(*s.function), s.params.size()));
+  if (const toml::table* t = root["oat"].as_table()) s.oat_points = positive(s, *t, "points", 5, "oat");
+  if (s.oat_points < 2) fail_at(s, root.get("oat"), "oat.points", "at least 2");
+  if (const toml::table* t = root["morris"].as_table()) {
+    s.trajectories = positive(s, *t, "trajectories", 10, "morris");
+    s.levels = static_cast<int>(positive(s, *t, "levels", 4, "morris"));
+    s.seed = positive(s, *t, "seed", 1, "morris");
+    if (s.levels % 2 != 0) fail_at(s, t->get("levels"), "morris.levels", "expected an even number of levels (4, 6, 8)");
+  }
+  if (const toml::table* t = root["sobol"].as_table()) {
+    s.samples = positive(s, *t, "samples", 256, "sobol");
+    s.resamples = positive(s, *t, "bootstrap", 1000, "sobol");
+    s.confidence = (*t)["confidence"].value_or(0.95);
+    if (!(s.confidence > 0.0 && s.confidence < 1.0)) fail_at(s, t->get("confidence"), "sobol.confidence", "expected 0 < c < 1");
+    if (const toml::array* c = (*t)["convergence"].as_array())
+      for (const auto& x : *c) {
+        auto v = x.value_exact<int64_t>();
+        if (!v || *v < 4) fail_at(s, &x, "sobol.convergence", "expected sample sizes >= 4, increasing");
+        s.convergence.push_back(static_cast<std::size_t>(*v));
+      }
+    for (std::size_t k = 1; k < s.convergence.size(); ++k)
+      if (s.convergence[k] <= s.convergence[k - 1]) fail_at(s, t->get("convergence"), "sobol.convergence", "expected increasing sample sizes");
+    if (auto p = (*t)["expected_order"].value<double>()) s.expected_order = *p;
+    s.order_band = (*t)["order_band"].value_or(0.3);
+  }
+  if (s.sobol && 2 * s.params.size() > 40) fail_at(s, pn, "parameter", "Sobol': at most 20 parameters (GSL's sequence has 40 dimensions)");
+  return s;
+}
+
+// ---- runs: the study engine's scheme (cache key = code identity + resolved case + overrides) ----
+
+std::uint64_t fnv1a(std::string_view text, std::uint64_t h = 1469598103934665603ull) {
+  for (unsigned char ch : text) {
+    h ^= ch;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+const std::string& code_identity() {
+  static const std::string id = [] {
+    std::string exe;
+    try {
+      exe = dem::read_file("/proc/self/exe");
+    } catch (const std::exception&) {
+    }
+    return fmt::format("{}+{:016x}", dem::provenance()["code_version"].get<std::string>(), fnv1a(exe));
+  }();
+  return id;
+}
+
+struct Run {
+  std::vector<double> u;                      // unit coordinates (OAT: NaN for parameters left at base)
+  std::vector<std::string> sets;
+  std::string method, status, message;
+  std::vector<double> outputs;                // NaN: missing
+};
+
+struct Runner {
+  const Sens& s;
+  fs::path cache_dir;
+  std::atomic<int> reused{0}, ran{0};
+
+  void run(Run& r) {
+    if (s.function) {
+      std::vector<double> x;
+      for (std::size_t i = 0; i < s.params.size(); ++i)  // the base point of a function: mid-range
+        x.push_back(sens::value_at(s.params[i], std::isfinite(r.u[i]) ? r.u[i] : 0.5));
+      r.outputs = {sens::evaluate(*s.function, x)};
+      r.status = std::isfinite(r.outputs[0]) ? "completed" : "non-finite";
+      return;
+    }
+    const dem::Case c = dem::read_case(s.root / s.case_path, r.sets);  // a bad path or value: the study fails
+    std::string key = code_identity() + "\n" + c.resolved.dump();
+    for (const auto& x : r.sets) key += "\n" + x;
+    const fs::path entry = cache_dir / fmt::format("{:016x}.json", fnv1a(key));
+    std::map<std::string, std::optional<double>> probes;
+    bool done = false;
+    if (fs::exists(entry)) {
+      try {
+        const nlohmann::json j = nlohmann::json::parse(dem::read_file(entry));
+        r.status = j.at("status").get<std::string>();
+        r.message = j.at("message").get<std::string>();
+        for (const auto& [k, v] : j.at("probes").items())
+          probes[k] = v.is_null() ? std::nullopt : std::optional<double>(v.get<double>());
+        done = true;
+        ++reused;
+      } catch (const std::exception&) {
+      }
+    }
+    if (!done) {
+      try {
+        const dem::RunResult res = dem::run_case(c, dem::RunOptions{});
+        if (res.status == "interrupted") throw StudyInterrupted(fmt::format("sensitivity {}: {}", s.name, res.message));
+        r.status = res.status;
+        r.message = res.message;
+        probes = res.probes;
+      } catch (const dem::CaseError& e) {  // the time-step guard (or another check before the run) refused it
+        r.status = "refused";
+        r.message = e.what();
+      }
+      nlohmann::json pj = nlohmann::json::object();
+      for (const auto& [k, v] : probes) pj[k] = v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+      dem::write_file_atomic(entry, nlohmann::json{{"status", r.status}, {"message", r.message}, {"probes", pj},
+                                                   {"case", c.path.string()}, {"overrides", r.sets},
+                                                   {"code", code_identity()}}.dump() + "\n", false);
+      ++ran;
+    }
+    for (const auto& o : s.outputs) {
+      if (r.status != "refused" && r.status != "blow-up" && !probes.count(o))
+        throw std::runtime_error(fmt::format("{}: sensitivity.outputs: the case has no probe \"{}\"", s.file.string(), o));
+      const auto it = probes.find(o);
+      r.outputs.push_back(it != probes.end() && it->second && r.status != "blow-up" ? *it->second : std::nan(""));
+    }
+  }
+};
+
+template <class F>
+void parallel_for(std::size_t n, int jobs, F&& f) {
+  std::atomic<std::size_t> next{0};
+  std::vector<std::thread> pool;
+  std::mutex err_m;
+  std::exception_ptr err;
+  for (int t = 0; t < std::max(1, jobs); ++t)
+    pool.emplace_back([&] {
+      for (std::size_t k; (k = next++) < n;) {
+        try {
+          f(k);
+        } catch (...) {
+          std::lock_guard<std::mutex> l(err_m);
+          if (!err) err = std::current_exception();
+        }
+      }
+    });
+  for (auto& th : pool) th.join();
+  if (err) std::rethrow_exception(err);
+}
+
+std::string num(double x) { return std::isfinite(x) ? fmt::format("{:.6g}", x) : std::string("—"); }
+nlohmann::json jnum(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
+  const Sens s = read_sens(file);
+  const std::size_t d = s.params.size(), no = s.outputs.size();
+  const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
+  fs::create_directories(out);
+  fs::remove(out / "result.json");
+  dem::write_file_atomic(out / "running.json", nlohmann::json{{"study", s.name}, {"status", "running"},
+                                                              {"provenance", dem::provenance()}}.dump(2) + "\n");
+  Runner runner{s, out / "cache"};
+  if (!opt.use_cache) fs::remove_all(runner.cache_dir);
+  fs::create_directories(runner.cache_dir);
+
+  // Every path and value is checked before anything runs: each parameter at both ends of its range.
+  if (!s.function)
+    for (const Parameter& p : s.params)
+      for (double v : {p.low, p.high}) {
+        std::vector<std::string> sets = s.set;
+        sets.push_back(fmt::format("{}={:.17g}", p.path, v));
+        (void)dem::read_case(s.root / s.case_path, sets);
+      }
+
+  auto make_run = [&](const std::string& method, const std::vector<double>& u) {
+    Run r;
+    r.method = method;
+    r.u = u;
+    r.sets = s.set;
+    for (std::size_t i = 0; i < d; ++i)
+      if (std::isfinite(u[i])) r.sets.push_back(fmt::format("{}={:.17g}", s.params[i].path, sens::value_at(s.params[i], u[i])));
+    return r;
+  };
+
+  std::vector<Run> runs;
+  // one-at-a-time: the base case, then each parameter over its range with the others at the base case's values
+  std::size_t oat_begin = runs.size();
+  const std::vector<double> grid = sens::oat_grid(s.oat_points);
+  if (s.oat) {
+    runs.push_back(make_run("oat base", std::vector<double>(d, std::nan(""))));
+    for (std::size_t i = 0; i < d; ++i)
+      for (double u : grid) {
+        std::vector<double> x(d, std::nan(""));
+        x[i] = u;
+        runs.push_back(make_run(fmt::format("oat {}", s.params[i].label), x));
+      }
+  }
+  const std::size_t morris_begin = runs.size();
+  std::vector<sens::MorrisTrajectory> traj;
+  if (s.morris) {
+    traj = sens::morris_trajectories(s.trajectories, d, s.levels, s.seed);
+    for (std::size_t t = 0; t < traj.size(); ++t)
+      for (const auto& p : traj[t].points) runs.push_back(make_run(fmt::format("morris {}", t), p));
+  }
+  const std::size_t sobol_begin = runs.size();
+  const std::size_t n = s.samples;
+  if (s.sobol) {
+    const sens::SaltelliDesign des = sens::saltelli_design(n, d);
+    for (const auto& row : des.a) runs.push_back(make_run("sobol A", row));
+    for (const auto& row : des.b) runs.push_back(make_run("sobol B", row));
+    for (std::size_t i = 0; i < d; ++i)
+      for (const auto& row : des.ab[i]) runs.push_back(make_run(fmt::format("sobol AB{}", i + 1), row));
+  }
+  parallel_for(runs.size(), s.function ? 1 : opt.jobs, [&](std::size_t k) { runner.run(runs[k]); });
+  fs::remove(out / "running.json");
+
+  // The table of every run: inputs (values; blank = the base case's), outputs, status.
+  std::ostringstream csv;
+  csv << "run,method";
+  for (const auto& p : s.params) csv << ",\"" << p.label << "\"";
+  for (const auto& o : s.outputs) csv << "," << o;
+  csv << ",status,message\n";
+  int failed = 0;
+  nlohmann::json run_rows = nlohmann::json::array();
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const Run& r = runs[k];
+    const bool ok = r.status != "refused" && r.status != "blow-up" && r.status != "non-finite";
+    failed += !ok;
+    csv << k << "," << r.method;
+    nlohmann::json row = {std::to_string(k), r.method};
+    for (std::size_t i = 0; i < d; ++i) {
+      const std::string v = std::isfinite(r.u[i]) ? fmt::format("{:.6g}", sens::value_at(s.params[i], r.u[i])) : std::string("base");
+      csv << "," << (std::isfinite(r.u[i]) ? fmt::format("{:.17g}", sens::value_at(s.params[i], r.u[i])) : std::string());
+      row.push_back(v);
+    }
+    for (double y : r.outputs) {
+      csv << "," << (std::isfinite(y) ? fmt::format("{:.17g}", y) : std::string());
+      row.push_back(num(y));
+    }
+    std::string msg = r.message;
+    std::replace(msg.begin(), msg.end(), '"', '\'');
+    std::replace(msg.begin(), msg.end(), '\n', ' ');
+    csv << "," << r.status << ",\"" << msg << "\"\n";
+    row.push_back(r.status);
+    run_rows.push_back(row);
+  }
+  dem::write_file_atomic(out / "runs.csv", csv.str(), false);
+
+  nlohmann::json checks = nlohmann::json::array(), tables = nlohmann::json::array(), figures = nlohmann::json::array(),
+                 series = nlohmann::json::array();
+  bool passed = true;
+  auto add_check = [&](const std::string& q, double ref, double val, double err, double tol, const std::string& reason,
+                       bool ok, const std::string& note, std::optional<double> order = std::nullopt) {
+    passed = passed && ok;
+    checks.push_back({{"quantity", q}, {"reference", jnum(ref)}, {"dem", jnum(val)}, {"error", jnum(err)},
+                      {"error_kind", "abs"}, {"tolerance", jnum(tol)}, {"tolerance_reason", reason},
+                      {"observed_order", order ? nlohmann::json(*order) : nlohmann::json(nullptr)},
+                      {"expected_order", order && s.expected_order ? nlohmann::json(*s.expected_order) : nlohmann::json(nullptr)},
+                      {"order_band", order && s.expected_order ? nlohmann::json(s.order_band) : nlohmann::json(nullptr)},
+                      {"passed", ok}, {"note", note}});
+  };
+  sens::ExactIndices exact;
+  if (s.function) {
+    std::vector<double> lo, hi;
+    for (const auto& p : s.params) {
+      lo.push_back(p.low);
+      hi.push_back(p.high);
+    }
+    exact = sens::exact_indices(*s.function, lo, hi);
+  }
+  std::ostringstream idx_csv;
+  idx_csv << "method,output,parameter,index,estimate,low,high,exact\n";
+  auto plain = [](const std::string& x) { return x; };
+
+  if (s.oat) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (std::size_t o = 0; o < no; ++o) {
+      nlohmann::json curves = nlohmann::json::array();
+      for (std::size_t i = 0; i < d; ++i) {
+        std::vector<double> xs, ys;
+        double ymin = INFINITY, ymax = -INFINITY;
+        for (std::size_t g = 0; g < grid.size(); ++g) {
+          const double y = runs[oat_begin + 1 + i * grid.size() + g].outputs[o];
+          if (!std::isfinite(y)) continue;
+          xs.push_back(grid[g]);
+          ys.push_back(y);
+          ymin = std::min(ymin, y);
+          ymax = std::max(ymax, y);
+        }
+        curves.push_back({{"label", s.params[i].label}, {"x", xs}, {"y", ys}, {"style", "linespoints"}});
+        const double range = ys.empty() ? std::nan("") : ymax - ymin;
+        rows.push_back({s.outputs[o], s.params[i].label,
+                        fmt::format("{} … {}{}", num(s.params[i].low), num(s.params[i].high), s.params[i].log_uniform ? " (log)" : ""),
+                        num(ys.empty() ? NAN : ys.front()), num(ys.empty() ? NAN : ys.back()), num(range),
+                        num(range / std::abs(runs[oat_begin].outputs[o]))});
+        idx_csv << "oat," << s.outputs[o] << ",\"" << plain(s.params[i].label) << "\",range," << fmt::format("{:.17g}", range) << ",,,\n";
+      }
+      figures.push_back({{"id", fmt::format("oat_{}", o)},
+                         {"title", fmt::format("One-at-a-time sweeps of {} (others at the base case; base value {})", s.outputs[o], num(runs[oat_begin].outputs[o]))},
+                         {"xlabel", "position in the parameter's range u (0 = low, 1 = high; log scale for log-uniform)"},
+                         {"ylabel", s.outputs[o]}, {"logx", false}, {"logy", false}, {"curves", curves}});
+    }
+    tables.push_back({{"title", "One-at-a-time sweeps: the output at both ends of each range"},
+                      {"columns", {"output", "parameter", "range", "at low", "at high", "max − min", "(max − min) / |base|"}},
+                      {"rows", rows}});
+  }
+
+  if (s.morris) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (std::size_t o = 0; o < no; ++o) {
+      std::vector<std::vector<double>> f(traj.size());
+      std::size_t k = morris_begin;
+      for (std::size_t t = 0; t < traj.size(); ++t)
+        for (std::size_t p = 0; p < traj[t].points.size(); ++p) f[t].push_back(runs[k++].outputs[o]);
+      const sens::MorrisEffects m = sens::morris_effects(traj, f, d);
+      nlohmann::json curves = nlohmann::json::array();
+      for (std::size_t i = 0; i < d; ++i) {
+        rows.push_back({s.outputs[o], s.params[i].label, num(m.mu_star[i]), num(m.mu[i]), num(m.sigma[i]),
+                        std::to_string(m.effects[i]), exact.morris_mu_star.empty() ? "" : num(exact.morris_mu_star[i])});
+        curves.push_back({{"label", s.params[i].label}, {"x", {jnum(m.mu_star[i])}}, {"y", {jnum(m.sigma[i])}}, {"style", "points"}});
+        idx_csv << "morris," << s.outputs[o] << ",\"" << s.params[i].label << "\",mu_star," << fmt::format("{:.17g}", m.mu_star[i]) << ",,,"
+                << (exact.morris_mu_star.empty() ? std::string() : fmt::format("{:.17g}", exact.morris_mu_star[i])) << "\n";
+        idx_csv << "morris," << s.outputs[o] << ",\"" << s.params[i].label << "\",mu," << fmt::format("{:.17g}", m.mu[i]) << ",,,\n";
+        idx_csv << "morris," << s.outputs[o] << ",\"" << s.params[i].label << "\",sigma," << fmt::format("{:.17g}", m.sigma[i]) << ",,,\n";
+        if (!exact.morris_mu_star.empty()) {
+          const double e = std::abs(m.mu_star[i] - exact.morris_mu_star[i]);
+          const double tol = 1e-9 * std::max(1.0, exact.morris_mu_star[i]);
+          add_check(fmt::format("Morris μ* of {} ({})", s.params[i].label, s.function->name), exact.morris_mu_star[i],
+                    m.mu_star[i], e, tol, "linear model: every elementary effect is exactly c_i (high − low); round-off only",
+                    e <= tol, "");
+          add_check(fmt::format("Morris σ of {} ({})", s.params[i].label, s.function->name), 0.0, m.sigma[i],
+                    std::abs(m.sigma[i]), tol, "linear model: all elementary effects equal, σ = 0; round-off only",
+                    std::abs(m.sigma[i]) <= tol, "");
+        }
+      }
+      figures.push_back({{"id", fmt::format("morris_{}", o)},
+                         {"title", fmt::format("Morris screening of {}: μ* against σ ({} trajectories, {} levels)", s.outputs[o], s.trajectories, s.levels)},
+                         {"xlabel", fmt::format("μ* [{} per unit range]", s.outputs[o])}, {"ylabel", "σ"},
+                         {"logx", false}, {"logy", false}, {"curves", curves}});
+    }
+    tables.push_back({{"title", fmt::format("Morris elementary effects (unit coordinates: per full range; {} trajectories, {} levels, Δ = {:.4g})",
+                                            s.trajectories, s.levels, sens::morris_delta(s.levels))},
+                      {"columns", {"output", "parameter", "μ*", "μ", "σ", "effects", "exact μ*"}},
+                      {"rows", rows}});
+  }
+
+  if (s.sobol) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (std::size_t o = 0; o < no; ++o) {
+      std::vector<double> fa(n), fb(n);
+      std::vector<std::vector<double>> fab(d, std::vector<double>(n));
+      for (std::size_t j = 0; j < n; ++j) {
+        fa[j] = runs[sobol_begin + j].outputs[o];
+        fb[j] = runs[sobol_begin + n + j].outputs[o];
+        for (std::size_t i = 0; i < d; ++i) fab[i][j] = runs[sobol_begin + (2 + i) * n + j].outputs[o];
+      }
+      const sens::SobolIndices si = sens::sobol_indices(fa, fb, fab, s.resamples, s.confidence);
+      nlohmann::json curves = nlohmann::json::array();
+      std::vector<double> xi, xt, ys, yt;
+      for (std::size_t i = 0; i < d; ++i) {
+        const double x = static_cast<double>(i + 1);
+        xi.push_back(x - 0.1);
+        xt.push_back(x + 0.1);
+        ys.push_back(si.first[i].estimate);
+        yt.push_back(si.total[i].estimate);
+        rows.push_back({s.outputs[o], s.params[i].label, num(si.first[i].estimate),
+                        fmt::format("[{}, {}]", num(si.first[i].low), num(si.first[i].high)), num(si.total[i].estimate),
+                        fmt::format("[{}, {}]", num(si.total[i].low), num(si.total[i].high)),
+                        exact.first.empty() ? "" : num(exact.first[i]), exact.total.empty() ? "" : num(exact.total[i])});
+        for (const auto& [kind, iv, ex] : {std::tuple{"S", si.first[i], exact.first}, std::tuple{"ST", si.total[i], exact.total}}) {
+          idx_csv << "sobol," << s.outputs[o] << ",\"" << s.params[i].label << "\"," << kind << ","
+                  << fmt::format("{:.17g},{:.17g},{:.17g},", iv.estimate, iv.low, iv.high)
+                  << (ex.empty() ? std::string() : fmt::format("{:.17g}", ex[i])) << "\n";
+          if (!ex.empty()) {
+            const double e = std::abs(iv.estimate - ex[i]);
+            const double tol = ex[i] < iv.estimate ? iv.estimate - iv.low : iv.high - iv.estimate;
+            add_check(fmt::format("{}_{} of {} ({}, N = {})", kind, i + 1, s.params[i].label, s.function->name, n), ex[i],
+                      iv.estimate, e, tol,
+                      fmt::format("the {:.0f} % bootstrap interval ({} resamples of the N rows) must contain the exact value",
+                                  100.0 * s.confidence, s.resamples),
+                      ex[i] >= iv.low && ex[i] <= iv.high, fmt::format("interval [{}, {}]", num(iv.low), num(iv.high)));
+          }
+        }
+        curves.push_back({{"label", fmt::format("{} % interval S, {}", 100.0 * s.confidence, s.params[i].label)},
+                          {"x", {x - 0.1, x - 0.1}}, {"y", {jnum(si.first[i].low), jnum(si.first[i].high)}}, {"style", "lines"}});
+        curves.push_back({{"label", fmt::format("{} % interval S_T, {}", 100.0 * s.confidence, s.params[i].label)},
+                          {"x", {x + 0.1, x + 0.1}}, {"y", {jnum(si.total[i].low), jnum(si.total[i].high)}}, {"style", "lines"}});
+      }
+      curves.insert(curves.begin(), {{"label", "total S_T (Jansen)"}, {"x", xt}, {"y", yt}, {"style", "points"}});
+      curves.insert(curves.begin(), {{"label", "first order S (Saltelli 2010)"}, {"x", xi}, {"y", ys}, {"style", "points"}});
+      if (!exact.first.empty()) {
+        std::vector<double> xe, ye;
+        for (std::size_t i = 0; i < d; ++i) {
+          xe.insert(xe.end(), {xi[i], xt[i]});
+          ye.insert(ye.end(), {exact.first[i], exact.total[i]});
+        }
+        curves.push_back({{"label", "exact"}, {"x", xe}, {"y", ye}, {"style", "points"}});
+      }
+      std::string names;
+      for (std::size_t i = 0; i < d; ++i) names += fmt::format("{}{} = {}", i ? ", " : "", i + 1, s.params[i].label);
+      figures.push_back({{"id", fmt::format("sobol_{}", o)},
+                         {"title", fmt::format("Sobol' indices of {} (N = {}, {} rows used; parameters {})", s.outputs[o], n, si.rows_used, names)},
+                         {"xlabel", "parameter"}, {"ylabel", "index"}, {"logx", false}, {"logy", false}, {"curves", curves}});
+    }
+    tables.push_back({{"title", fmt::format("Sobol' indices (Saltelli sampling, N = {}, {} runs; {} % bootstrap intervals)", n, n * (d + 2),
+                                            100.0 * s.confidence)},
+                      {"columns", {"output", "parameter", "S", "interval", "S_T", "interval", "exact S", "exact S_T"}},
+                      {"rows", rows}});
+    // Function studies: the error over doubling sample sizes, at the quasi-random rate.
+    if (s.function && !s.convergence.empty()) {
+      std::vector<double> h, err;
+      nlohmann::json crow = nlohmann::json::array();
+      for (std::size_t nn : s.convergence) {
+        const sens::SaltelliDesign des = sens::saltelli_design(nn, d);
+        auto f = [&](const std::vector<double>& u) {
+          Run r = make_run("", u);
+          runner.run(r);
+          return r.outputs[0];
+        };
+        std::vector<double> fa, fb;
+        std::vector<std::vector<double>> fab(d);
+        for (std::size_t j = 0; j < nn; ++j) {
+          fa.push_back(f(des.a[j]));
+          fb.push_back(f(des.b[j]));
+          for (std::size_t i = 0; i < d; ++i) fab[i].push_back(f(des.ab[i][j]));
+        }
+        const sens::SobolIndices si = sens::sobol_indices(fa, fb, fab, 0);
+        double e = 0.0;
+        for (std::size_t i = 0; i < d; ++i)
+          e = std::max({e, std::abs(si.first[i].estimate - exact.first[i]), std::abs(si.total[i].estimate - exact.total[i])});
+        h.push_back(1.0 / static_cast<double>(nn));
+        err.push_back(e);
+        crow.push_back({std::to_string(nn), num(e)});
+      }
+      ConvergenceOptions co;
+      co.reference = 0.0;
+      co.expected_order = s.expected_order;
+      const Series ser = analyse_convergence(h, err, co, fmt::format("max |index − exact| ({})", s.function->name), "1/N");
+      series.push_back(to_json(ser));
+      const double p = ser.fitted_order.value_or(std::nan(""));
+      if (s.expected_order)
+        add_check(fmt::format("order of the index error in N ({}, N = {} … {})", s.function->name, s.convergence.front(), s.convergence.back()),
+                  0.0, err.back(), err.back(), NAN,
+                  fmt::format("Sobol' points: error ~ N^-1 up to log factors (Monte Carlo: N^-1/2); least-squares order must be at least {} − {}",
+                              *s.expected_order, s.order_band),
+                  std::isfinite(p) && p >= *s.expected_order - s.order_band, "one-sided: faster than promised passes", p);
+      tables.push_back({{"title", "Largest index error over doubling sample sizes"}, {"columns", {"N", "max |S − exact|, |S_T − exact|"}}, {"rows", crow}});
+    }
+  }
+  dem::write_file_atomic(out / "indices.csv", idx_csv.str(), false);
+
+  if (failed > s.max_failed) passed = false;
+  checks.push_back({{"quantity", "failed runs (blow-up, refused by the guard)"}, {"reference", 0}, {"dem", failed},
+                    {"error", failed}, {"error_kind", "abs"}, {"tolerance", s.max_failed},
+                    {"tolerance_reason", "the ranges are meant to stay inside the stable, accepted region (max_failed_runs)"},
+                    {"observed_order", nullptr}, {"expected_order", nullptr}, {"order_band", nullptr},
+                    {"passed", failed <= s.max_failed}, {"note", ""}});
+  if (run_rows.size() <= 300) {
+    nlohmann::json cols = {"run", "method"};
+    for (const auto& p : s.params) cols.push_back(p.label);
+    for (const auto& o : s.outputs) cols.push_back(o);
+    cols.push_back("status");
+    tables.push_back({{"title", "All runs (runs.csv)"}, {"columns", cols}, {"rows", run_rows}});
+  } else {
+    tables.push_back({{"title", "All runs"}, {"preformatted", fmt::format("{} runs, {} failed: see runs.csv", run_rows.size(), failed)}});
+  }
+
+  nlohmann::json setup = s.setup;
+  std::string methods;
+  for (const auto& [on, m] : {std::pair{s.oat, "one-at-a-time"}, std::pair{s.morris, "Morris"}, std::pair{s.sobol, "Sobol'"}})
+    if (on) methods += (methods.empty() ? "" : ", ") + std::string(m);
+  setup["methods"] = methods;
+  setup["runs"] = runs.size();
+  setup["failed runs"] = failed;
+  for (const auto& p : s.params)
+    setup["range of " + p.label] = fmt::format("{} = {} … {} ({})", p.path.empty() ? p.label : p.path, num(p.low), num(p.high),
+                                               p.log_uniform ? "log-uniform" : "uniform");
+  if (s.function) setup["function"] = s.function->name;
+  nlohmann::json prov = dem::provenance();
+  prov["overrides"] = s.set;
+  prov["runs_reused"] = runner.reused.load();
+  prov["runs_run"] = runner.ran.load();
+  std::string params;
+  for (const auto& p : s.params) params += (params.empty() ? "" : ", ") + p.label;
+  nlohmann::json result = {
+      {"study", s.name}, {"title", s.title}, {"requirement", s.requirement}, {"kind", "sensitivity"},
+      {"case", s.function ? "test function " + s.function->name : s.case_path}, {"parameter", params},
+      {"reference", s.function ? "exact indices of the test function (sensitivity_functions.hpp)" : "none: a sensitivity study"},
+      {"setup", setup}, {"provenance", prov}, {"passed", passed}, {"checks", checks}, {"series", series},
+      {"figures", figures}, {"tables", tables}};
+  dem::write_file_atomic(out / "result.json", result.dump(2) + "\n");
+
+  if (opt.print) {
+    fmt::print("sensitivity {}: {} ({} runs, {} failed, {} reused)\n", s.name, s.title, runs.size(), failed, runner.reused.load());
+    for (const auto& t : tables) {
+      if (!t.contains("columns") || t["title"].get<std::string>().rfind("All runs", 0) == 0) continue;
+      fmt::print("  {}\n", t["title"].get<std::string>());
+      std::string line;
+      for (const auto& c : t["columns"]) line += fmt::format("{:>16} ", c.get<std::string>());
+      fmt::print("    {}\n", line);
+      for (const auto& r : t["rows"]) {
+        line.clear();
+        for (const auto& c : r) line += fmt::format("{:>16} ", c.is_string() ? c.get<std::string>() : c.dump());
+        fmt::print("    {}\n", line);
+      }
+    }
+    for (const auto& c : checks)
+      if (!c["passed"].get<bool>()) fmt::print("  FAIL: {} (value {}, reference {})\n", c["quantity"].get<std::string>(), c["dem"].dump(), c["reference"].dump());
+    fmt::print("  => {}  ({})\n", passed ? "PASSED" : "FAILED", (out / "result.json").string());
+  }
+  return {passed, result};
+}
+
+}  // namespace ver

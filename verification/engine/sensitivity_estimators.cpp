@@ -1,0 +1,134 @@
+#include "engine/sensitivity_estimators.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+namespace ver::sens {
+
+namespace {
+
+struct Point {
+  std::vector<double> first, total;
+};
+
+/// The estimators over the rows `rows` (indices into the outputs, repeats allowed).
+Point estimate(const std::vector<double>& fa, const std::vector<double>& fb, const std::vector<std::vector<double>>& fab,
+               const std::vector<std::size_t>& rows) {
+  const std::size_t d = fab.size();
+  const double n = static_cast<double>(rows.size());
+  double mean = 0.0;
+  for (std::size_t j : rows) mean += fa[j] + fb[j];
+  mean /= 2.0 * n;
+  double var = 0.0;
+  for (std::size_t j : rows) var += (fa[j] - mean) * (fa[j] - mean) + (fb[j] - mean) * (fb[j] - mean);
+  var /= 2.0 * n - 1.0;
+  Point p{std::vector<double>(d, 0.0), std::vector<double>(d, 0.0)};
+  for (std::size_t i = 0; i < d; ++i) {
+    double s = 0.0, t = 0.0;
+    for (std::size_t j : rows) {
+      s += fb[j] * (fab[i][j] - fa[j]);                      // Saltelli 2010 first order
+      t += (fa[j] - fab[i][j]) * (fa[j] - fab[i][j]);        // Jansen total
+    }
+    p.first[i] = var > 0.0 ? s / n / var : 0.0;
+    p.total[i] = var > 0.0 ? t / (2.0 * n) / var : 0.0;
+  }
+  return p;
+}
+
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  const double pos = q * static_cast<double>(v.size() - 1);
+  const std::size_t k = static_cast<std::size_t>(std::floor(pos));
+  if (k + 1 >= v.size()) return v.back();
+  return v[k] + (pos - static_cast<double>(k)) * (v[k + 1] - v[k]);
+}
+
+}  // namespace
+
+SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<double>& fb,
+                           const std::vector<std::vector<double>>& fab, std::size_t resamples, double confidence,
+                           std::uint64_t seed) {
+  const std::size_t n = fa.size(), d = fab.size();
+  if (fb.size() != n) throw std::invalid_argument("sobol_indices: f(A) and f(B) differ in length");
+  for (const auto& c : fab)
+    if (c.size() != n) throw std::invalid_argument("sobol_indices: f(AB_i) differs in length from f(A)");
+  std::vector<std::size_t> rows;
+  for (std::size_t j = 0; j < n; ++j) {
+    bool ok = std::isfinite(fa[j]) && std::isfinite(fb[j]);
+    for (std::size_t i = 0; i < d && ok; ++i) ok = std::isfinite(fab[i][j]);
+    if (ok) rows.push_back(j);
+  }
+  SobolIndices out;
+  out.rows_used = rows.size();
+  out.first.resize(d);
+  out.total.resize(d);
+  if (rows.size() < 2) {
+    for (auto* v : {&out.first, &out.total})
+      for (auto& x : *v) x = {std::nan(""), std::nan(""), std::nan("")};
+    return out;
+  }
+  const Point p = estimate(fa, fb, fab, rows);
+  {
+    double mean = 0.0;
+    for (std::size_t j : rows) mean += fa[j] + fb[j];
+    mean /= 2.0 * static_cast<double>(rows.size());
+    for (std::size_t j : rows) out.variance += (fa[j] - mean) * (fa[j] - mean) + (fb[j] - mean) * (fb[j] - mean);
+    out.variance /= 2.0 * static_cast<double>(rows.size()) - 1.0;
+  }
+  std::mt19937_64 rng(seed);
+  std::vector<std::vector<double>> bs_first(d), bs_total(d);
+  std::vector<std::size_t> sample(rows.size());
+  for (std::size_t b = 0; b < resamples; ++b) {
+    for (auto& s : sample) s = rows[static_cast<std::size_t>(rng() % rows.size())];
+    const Point q = estimate(fa, fb, fab, sample);
+    for (std::size_t i = 0; i < d; ++i) {
+      bs_first[i].push_back(q.first[i]);
+      bs_total[i].push_back(q.total[i]);
+    }
+  }
+  const double lo = 0.5 * (1.0 - confidence), hi = 1.0 - lo;
+  for (std::size_t i = 0; i < d; ++i) {
+    out.first[i] = {p.first[i], resamples ? quantile(bs_first[i], lo) : p.first[i],
+                    resamples ? quantile(bs_first[i], hi) : p.first[i]};
+    out.total[i] = {p.total[i], resamples ? quantile(bs_total[i], lo) : p.total[i],
+                    resamples ? quantile(bs_total[i], hi) : p.total[i]};
+  }
+  return out;
+}
+
+MorrisEffects morris_effects(const std::vector<MorrisTrajectory>& tr, const std::vector<std::vector<double>>& f,
+                             std::size_t d) {
+  if (f.size() != tr.size()) throw std::invalid_argument("morris_effects: one output row per trajectory");
+  std::vector<std::vector<double>> ee(d);
+  for (std::size_t t = 0; t < tr.size(); ++t) {
+    if (f[t].size() != tr[t].points.size()) throw std::invalid_argument("morris_effects: one output per point");
+    for (std::size_t k = 0; k < tr[t].order.size(); ++k) {
+      const std::size_t i = tr[t].order[k];
+      const double dx = tr[t].points[k + 1][i] - tr[t].points[k][i];
+      const double e = (f[t][k + 1] - f[t][k]) / dx;
+      if (std::isfinite(e)) ee[i].push_back(e);
+    }
+  }
+  MorrisEffects m;
+  for (std::size_t i = 0; i < d; ++i) {
+    const double n = static_cast<double>(ee[i].size());
+    double mu = 0.0, mu_star = 0.0;
+    for (double e : ee[i]) {
+      mu += e;
+      mu_star += std::abs(e);
+    }
+    mu = n > 0 ? mu / n : std::nan("");
+    mu_star = n > 0 ? mu_star / n : std::nan("");
+    double var = 0.0;
+    for (double e : ee[i]) var += (e - mu) * (e - mu);
+    m.mu.push_back(mu);
+    m.mu_star.push_back(mu_star);
+    m.sigma.push_back(n > 1 ? std::sqrt(var / (n - 1.0)) : std::nan(""));
+    m.effects.push_back(ee[i].size());
+  }
+  return m;
+}
+
+}  // namespace ver::sens

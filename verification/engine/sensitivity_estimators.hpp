@@ -1,0 +1,42 @@
+#pragma once
+// Estimators of the sensitivity studies (sensitivity.hpp), on model outputs at the samplers' points
+// (sensitivity_sampling.hpp). Outputs that are missing (a failed run) are passed as NaN: the Sobol'
+// estimators drop every row j where f(A_j), f(B_j) or f(AB_i,j) is missing, Morris drops the
+// elementary effects that touch a missing point; the counts are reported.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "engine/sensitivity_sampling.hpp"
+
+namespace ver::sens {
+
+struct Interval {
+  double estimate = 0.0, low = 0.0, high = 0.0;  // the estimate and its bootstrap percentile interval
+};
+
+struct SobolIndices {
+  std::vector<Interval> first, total;  // per parameter
+  double variance = 0.0;               // Var Y over A ∪ B
+  std::size_t rows_used = 0;           // rows with every output available
+};
+
+/// First-order index (Saltelli et al. 2010, Table 2 (b)):  S_i  = mean_j f(B)_j (f(AB_i)_j − f(A)_j) / V
+/// Total index (Jansen 1999; Saltelli et al. 2010, Table 2 (f)): S_Ti = mean_j (f(A)_j − f(AB_i)_j)² / (2 V)
+/// V = the variance of f over A and B together. Bootstrap: `resamples` draws of the rows with
+/// replacement (std::mt19937_64, seed), percentile interval at `confidence` (e.g. 0.95).
+SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<double>& fb,
+                           const std::vector<std::vector<double>>& fab, std::size_t resamples = 1000,
+                           double confidence = 0.95, std::uint64_t seed = 12345);
+
+struct MorrisEffects {
+  std::vector<double> mu, mu_star, sigma;  // per parameter: mean, mean |EE|, standard deviation (r − 1)
+  std::vector<std::size_t> effects;        // elementary effects used per parameter
+};
+
+/// Elementary effects EE_i = (f(x + Δ e_i) − f(x)) / (±Δ) in unit coordinates (Morris 1991), μ*
+/// (Campolongo et al. 2007), σ; f[t][k] is the output at point k of trajectory t.
+MorrisEffects morris_effects(const std::vector<MorrisTrajectory>& tr, const std::vector<std::vector<double>>& f,
+                             std::size_t d);
+
+}  // namespace ver::sens

@@ -1,0 +1,33 @@
+#pragma once
+// Test functions with known sensitivity indices: the function evaluator of the sensitivity studies
+// (`function = "..."` instead of a case), which checks the samplers and estimators without the DEM.
+//   ishigami(a, b):  f = sin x1 + a sin² x2 + b x3⁴ sin x1, x_i ~ U[−π, π]
+//                    (Ishigami & Homma 1990; indices e.g. Saltelli et al. 2008, Global Sensitivity
+//                    Analysis: The Primer, §4.7 / Sobol' & Levitan 1999)
+//   g(a_1..a_d):     f = Π (|4 x_i − 2| + a_i) / (1 + a_i), x_i ~ U[0, 1]  (Sobol' 1993 / Saltelli & Sobol' 1995)
+//   linear(c_1..c_d): f = Σ c_i x_i on any ranges: Morris effects EE_i = c_i (high_i − low_i) exactly
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ver::sens {
+
+struct TestFunction {
+  std::string name;                // ishigami | g | linear
+  std::vector<double> coefficients;  // ishigami: {a, b}; g: a_i; linear: c_i
+};
+
+/// f(x) with x the parameter values (physical units).
+double evaluate(const TestFunction& f, const std::vector<double>& x);
+
+/// The exact indices, where known (ranges as the definitions above; for linear: uniform ranges).
+struct ExactIndices {
+  std::vector<double> first, total;
+  std::vector<double> morris_mu_star, morris_sigma;  // linear only
+};
+ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low, const std::vector<double>& high);
+
+/// How many inputs the function takes (0: any).
+std::size_t dimension(const TestFunction& f);
+
+}  // namespace ver::sens
