@@ -40,7 +40,13 @@ double janssen_wall_force(double z1, double z2, double rho, double g, double b, 
   detail::require_positive("ref::janssen_wall_force", "K", k);
   if (mu <= 0.0) return 0.5 * k * rho * g * (z2 * z2 - z1 * z1);
   const double z0 = b / (2.0 * k * mu);
-  return rho * g * b / (2.0 * mu) * ((z2 - z1) - z0 * (std::exp(-z1 / z0) - std::exp(-z2 / z0)));
+  // ∫₀^z (1 − e^{−t/z₀}) dt = z₀ f(z/z₀), f(x) = x − 1 + e^{−x}; the series for small x avoids the
+  // cancellation of x and 1 − e^{−x} (weak wall friction: z₀ ≫ z)
+  auto f = [](double x) {
+    if (x < 1e-3) return x * x * (0.5 - x * (1.0 / 6.0 - x * (1.0 / 24.0 - x / 120.0)));
+    return x + std::expm1(-x);
+  };
+  return rho * g * b / (2.0 * mu) * z0 * (f(z2 / z0) - f(z1 / z0));
 }
 
 double beverloo_2d(double c, double rho, double g, double slot, double k, double d) {
