@@ -15,6 +15,7 @@
 #include "ref/oscillator.hpp"
 #include "ref/require.hpp"
 #include "ref/resting_overlap.hpp"
+#include "ref/silo.hpp"
 #include "ref/spring_layer.hpp"
 #include "ref/stability.hpp"
 
@@ -296,6 +297,25 @@ const std::vector<Entry>& table() {
          return groove_first_crack_load({a("b"), a("h"), a("L")}, a("sigma_t"), a.count("n_h"), a.count("N"),
                                         where, a("R"));
        }},
+      {{"silo.janssen_wall_force",
+        "horizontal force per unit thickness on a side-wall band z1 <= z <= z2 below the free surface of a "
+        "plane silo of width B, Janssen with lateral ratio K and wall friction mu_w (refs §6.1)",
+        {{"z1", "m", "upper depth"}, {"z2", "m", "lower depth"}, {"rho_b", "kg/m^3", "bulk density"},
+         {"g", "m/s^2", "gravity"}, {"B", "m", "silo width"}, {"K", "1", "lateral ratio"},
+         {"mu_w", "1", "wall friction coefficient"}},
+        "N/m"},
+       [](const Args& a) { return janssen_wall_force(a("z1"), a("z2"), a("rho_b"), a("g"), a("B"), a("K"), a("mu_w")); }},
+      {{"silo.k_geom",
+        "K_geom = (d_x/2)^2/d_y^2 of the (s-1)/s packing of disks of radius r in a box of width B (refs §6.1)",
+        {{"s", "1", "disks in a full row"}, {"B", "m", "silo width"}, {"r", "m", "disk radius"}},
+        "1"},
+       [](const Args& a) { return ordered_packing(a.count("s"), a("B"), a("r")).k_geom; }},
+      {{"silo.beverloo_2d",
+        "2D Beverloo mass flow rate per unit thickness W = C rho_b sqrt(g) (D - k d)^(3/2) (refs §6.2)",
+        {{"C", "1", "discharge coefficient"}, {"rho_b", "kg/m^3", "bulk density"}, {"g", "m/s^2", "gravity"},
+         {"D", "m", "slot width"}, {"k", "1", "empty-annulus factor"}, {"d", "m", "grain diameter"}},
+        "kg/(m s)"},
+       [](const Args& a) { return beverloo_2d(a("C"), a("rho_b"), a("g"), a("D"), a("k"), a("d")); }},
   };
   return entries;
 }

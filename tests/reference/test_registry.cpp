@@ -73,6 +73,9 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"beam.peak_load", {"b", "h", "L", "sigma_t"}},
       {"beam.first_crack_ratio", {"n_h", "N", "ends"}},
       {"beam.groove_first_crack_load", {"b", "h", "L", "sigma_t", "n_h", "N", "ends", "R"}},
+      {"silo.janssen_wall_force", {"z1", "z2", "rho_b", "g", "B", "K", "mu_w"}},
+      {"silo.k_geom", {"s", "B", "r"}},
+      {"silo.beverloo_2d", {"C", "rho_b", "g", "D", "k", "d"}},
   };
   const auto infos = ref::solvers();
   CHECK(infos.size() == expected.size());

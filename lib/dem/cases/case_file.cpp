@@ -10,7 +10,9 @@
 #include <fmt/format.h>
 
 #include "dem/cases/case_reader.hpp"
+#include "dem/cases/generators.hpp"
 #include "dem/cases/text.hpp"
+#include "dem/contact/constants.hpp"
 #include "dem/core/simulation.hpp"
 
 namespace dem {
@@ -146,6 +148,28 @@ struct Reader {
     if (!(v >= 0.0)) r.fail(key, fmt::format("must not be negative, got {}", v));
   }
 
+  /// kn_from_elastic = { E = "750 kgf/cm^2", nu = 0.3, q = "0.068 kgf/cm", radius = "1 cm", c = 1.5,
+  /// factor = 1 }: Kiyama's K_n per unit thickness [Pa] from the 2D elastic contact of two equal
+  /// cylinders (K22b, K23), times `factor` (Kiyama's walls: 2).
+  double kn_from_elastic(const TableReader& t) {
+    const double e = t.quantity("E", dims::pressure);
+    positive(t, "E", e);
+    const double nu = t.number("nu");
+    if (!(nu >= 0.0 && nu < 0.5)) t.fail("nu", "expected Poisson's ratio 0 <= nu < 0.5");
+    const double q = t.quantity("q", dims::force_per_length);
+    positive(t, "q", q);
+    const double radius = t.quantity("radius", dims::length);
+    positive(t, "radius", radius);
+    const double cc = t.number("c", 1.5);
+    const double factor = t.number("factor", 1.0);
+    positive(t, "factor", factor);
+    const double kn = factor * hertz_2d_stiffness(e, nu, radius, q, cc);  // (K22b, K23)
+    if (!(kn > 0.0) || !std::isfinite(kn))
+      t.fail("c", fmt::format("K23 gives no positive stiffness (c + 2 ln(4r/b) <= 0): {:.6g} Pa", kn));
+    t.finish();
+    return kn;
+  }
+
   void read_contact(const TableReader& r) {
     Model& m = c.model;
     const toml::node* between = r.node("between");
@@ -189,9 +213,15 @@ struct Reader {
     law.onset = r.choice("onset", {"increment", "overlap"}, "increment") == "increment" ? Onset::increment : Onset::overlap;
 
     if (law.kind == LawKind::linear) {
-      auto [kn, dkn] = r.quantity_either("kn", dims::stiffness, dims::pressure);
-      law.linear.kn = dkn == dims::stiffness ? kn : kn * l;  // a 2D stiffness per unit thickness × l
-      positive(r, "kn", law.linear.kn);
+      if (r.has("kn") == r.has("kn_from_elastic"))
+        r.fail_here("give exactly one of kn or kn_from_elastic = { E, nu, q, radius, c, factor } (K23)");
+      if (r.has("kn_from_elastic")) {
+        law.linear.kn = kn_from_elastic(TableReader(*r.table("kn_from_elastic"), r.key_path("kn_from_elastic"), file)) * l;
+      } else {
+        auto [kn, dkn] = r.quantity_either("kn", dims::stiffness, dims::pressure);
+        law.linear.kn = dkn == dims::stiffness ? kn : kn * l;  // a 2D stiffness per unit thickness × l
+        positive(r, "kn", law.linear.kn);
+      }
       if (r.has("ks") && r.has("ks_ratio")) r.fail("ks", "give either ks or ks_ratio");
       if (r.has("ks")) {
         auto [ks, dks] = r.quantity_either("ks", dims::stiffness, dims::pressure);
@@ -262,12 +292,14 @@ struct Reader {
     double omega;
   };
 
-  ElementCommon common(const TableReader& r) {
+  ElementCommon common(const TableReader& r, bool radius_required = true) {
     ElementCommon e{};
     e.shape = r.choice("shape", {"disk", "pre"}, "disk") == "disk" ? Shape::disk : Shape::pre;
     e.material = material(r, "material");
-    e.radius = r.quantity("radius", dims::length);
-    positive(r, "radius", e.radius);
+    if (radius_required || r.has("radius")) {
+      e.radius = r.quantity("radius", dims::length);
+      positive(r, "radius", e.radius);
+    }
     e.pre_mass = r.choice("pre_mass", {"square", "disk"}, "square") == "square" ? PreMass::square : PreMass::disk;
     if (e.shape == Shape::disk && r.has("pre_mass")) r.fail("pre_mass", "only for shape = \"pre\"");
     e.mass = r.quantity("mass", dims::mass, 0.0);
@@ -286,6 +318,91 @@ struct Reader {
     e.velocity = r.vector("velocity", dims::velocity, Vec2{});
     e.omega = r.quantity("angular_velocity", dims::angular_velocity, 0.0);
     return e;
+  }
+
+  /// [[arrangement]] kind = "ordered": Kiyama's (s−1)/s rows between x = left and x = right on the
+  /// floor y = floor (y up); kind = "random": random sequential addition in a rectangle.
+  void read_arrangement(const TableReader& r) {
+    const std::string kind = r.string("kind");
+    if (kind != "ordered" && kind != "random") r.fail("kind", "expected \"ordered\" ((s-1)/s rows, refs §6.1) or \"random\"");
+    if (kind == "ordered") {
+      const auto ec = common(r);
+      const int s = static_cast<int>(r.integer("s", 2, 100000));
+      const double left = r.quantity("left", dims::length), right = r.quantity("right", dims::length);
+      const double floor = r.quantity("floor", dims::length);
+      const double gap = r.quantity("gap", dims::length, 0.0);
+      non_negative(r, "gap", gap);
+      if (!(right > left)) r.fail("right", "must be right of left");
+      if (r.has("rows") == r.has("count_near")) r.fail_here("give exactly one of rows or count_near (the row count whose disk count is nearest)");
+      const int rows = r.has("rows") ? static_cast<int>(r.integer("rows", 1, 1000000))
+                                     : rows_nearest_count(s, r.integer("count_near", 1, kMaxElements));
+      OrderedArrangement a;
+      try {
+        a = ordered_arrangement(s, rows, right - left, ec.radius, gap);
+      } catch (const std::invalid_argument& e) {
+        r.fail("s", e.what());
+      }
+      room_for(r, "s", a.count);
+      for (const Vec2 p : ordered_positions(a, left, floor, ec.radius, gap)) place(ec, p, 0.0, -1);
+      return;
+    }
+    const auto base = common(r, false);
+    RadiusDistribution dist;
+    const int forms = int(r.has("radius")) + int(r.has("radius_range")) + int(r.has("radii"));
+    if (forms != 1) r.fail_here("give exactly one of radius, radius_range = [min, max] (uniform) or radii = [...] with fractions = [...]");
+    if (r.has("radius")) {
+      dist.min = dist.max = base.radius;
+    } else if (r.has("radius_range")) {
+      const toml::array* arr = r.node("radius_range")->as_array();
+      r.mark("radius_range");
+      if (!arr || arr->size() != 2) r.fail("radius_range", "expected [min, max]");
+      dist.min = r.quantity_of(*arr->get(0), "radius_range", dims::length);
+      dist.max = r.quantity_of(*arr->get(1), "radius_range", dims::length);
+      if (!(dist.min > 0.0 && dist.max >= dist.min)) r.fail("radius_range", "expected 0 < min <= max");
+    } else {
+      const toml::array* rs = r.node("radii")->as_array();
+      const toml::array* fs = r.node("fractions") ? r.node("fractions")->as_array() : nullptr;
+      r.mark("radii");
+      r.mark("fractions");
+      if (!rs || rs->empty()) r.fail("radii", "expected a list of radii");
+      if (!fs || fs->size() != rs->size()) r.fail("radii", "expected fractions = [...] of the same length (number fractions)");
+      double sum = 0.0;
+      for (std::size_t k = 0; k < rs->size(); ++k) {
+        dist.radii.push_back(r.quantity_of(*rs->get(k), "radii", dims::length));
+        if (!(dist.radii.back() > 0.0)) r.fail("radii", "radii must be positive");
+        const auto f = fs->get(k)->value<double>();
+        if (!f || !(*f >= 0.0)) r.fail("fractions", "expected non-negative numbers");
+        dist.fractions.push_back(*f);
+        sum += *f;
+      }
+      if (std::abs(sum - 1.0) > 1e-9) r.fail("fractions", fmt::format("must sum to 1 (they sum to {})", sum));
+    }
+    const toml::array* region = r.node("region") ? r.node("region")->as_array() : nullptr;
+    r.mark("region");
+    if (!region || region->size() != 2 || !region->get(0)->is_array() || !region->get(1)->is_array())
+      r.fail("region", "expected region = [[x0, y0], [x1, y1]] (lower-left and upper-right corners)");
+    auto corner = [&](std::size_t k) {
+      const toml::array* p = region->get(k)->as_array();
+      if (p->size() != 2) r.fail("region", "expected [x, y] corners");
+      return Vec2{r.quantity_of(*p->get(0), "region", dims::length), r.quantity_of(*p->get(1), "region", dims::length)};
+    };
+    const Vec2 lo = corner(0), hi = corner(1);
+    const auto count = r.integer("count", 1, kMaxElements);
+    room_for(r, "count", count);
+    const auto seed = static_cast<std::uint64_t>(r.integer("seed", 0, std::numeric_limits<std::int64_t>::max()));
+    const double gap = r.quantity("gap", dims::length, 0.0);
+    non_negative(r, "gap", gap);
+    std::vector<PlacedDisk> disks;
+    try {
+      disks = random_fill(lo, hi, count, dist, seed, gap);
+    } catch (const std::exception& e) {
+      r.fail("count", e.what());
+    }
+    for (const auto& d : disks) {
+      ElementCommon ec = base;
+      ec.radius = d.radius;
+      place(ec, d.centre, 0.0, -1);
+    }
   }
 
   std::size_t place(const ElementCommon& ec, Vec2 pos, double rotation, std::int32_t group) {
@@ -519,7 +636,9 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
       r.fail("step", fmt::format("the row reaches a position that is not a finite number ({}, {})", far.x, far.y));
     for (std::int64_t k = 0; k < n; ++k) rd.place(ec, start + step * static_cast<double>(k), 0.0, -1);
   });
-  if (m.elements.size() == 0) top.fail_here("no elements: give [[element]], [[lattice]] or [[row]] tables");
+  // [[arrangement]]: generated fills (generators.hpp, refs §6.1)
+  rd.each(top, "arrangement", [&](TableReader& r, std::size_t) { rd.read_arrangement(r); });
+  if (m.elements.size() == 0) top.fail_here("no elements: give [[element]], [[lattice]], [[row]] or [[arrangement]] tables");
   // [[wall]]
   rd.each(top, "wall", [&](TableReader& r, std::size_t k) {
     Wall w;
