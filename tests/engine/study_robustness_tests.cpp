@@ -15,16 +15,18 @@
 #include "engine/study.hpp"
 #include "study_result.hpp"
 
+#include "../lib/test_support.hpp"
+
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 
 namespace {
 
-fs::path source(const std::string& rel) { return fs::path(DEM2D_SOURCE_DIR) / rel; }
+using test::slurp;
+using test::source;
 
 fs::path fresh_dir(const std::string& name) {
-  const auto d = fs::temp_directory_path() / "dem2d_unit_study" / name;
-  fs::remove_all(d);
+  const auto d = test::fresh_dir("dem2d_unit_study", name);
   fs::create_directories(d);
   return d;
 }

@@ -19,25 +19,21 @@
 #include "dem/run/output_files.hpp"
 #include "dem/run/run.hpp"
 
+#include "test_support.hpp"
+
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 
 namespace {
 
-fs::path source(const std::string& rel) { return fs::path(DEM2D_SOURCE_DIR) / rel; }
+using test::slurp;
+using test::source;
 
 fs::path fresh_dir(const std::string& name) {
-  const auto d = fs::temp_directory_path() / "dem2d_unit_outputs" / name;
-  fs::remove_all(d);
+  const auto d = test::fresh_dir("dem2d_unit_outputs", name);
   return d;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// The data rows of a series.csv (without the comment and the header).
 std::vector<std::string> rows(const fs::path& csv) {

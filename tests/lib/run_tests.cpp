@@ -9,25 +9,21 @@
 
 #include "dem/run/run.hpp"
 
+#include "test_support.hpp"
+
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 
 namespace {
 
-fs::path source(const std::string& rel) { return fs::path(DEM2D_SOURCE_DIR) / rel; }
+using test::slurp;
+using test::source;
 
 fs::path fresh_dir(const std::string& name) {
-  const auto d = fs::temp_directory_path() / "dem2d_unit_run" / name;
-  fs::remove_all(d);
+  const auto d = test::fresh_dir("dem2d_unit_run", name);
   return d;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 dem::RunResult run(const std::string& case_rel, const fs::path& out, const std::vector<std::string>& sets = {}) {
   dem::RunOptions o;

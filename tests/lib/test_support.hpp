@@ -91,4 +91,20 @@ std::string message_of(F&& f) {
 /// Source folder of the tests' case files.
 inline std::filesystem::path case_dir() { return std::filesystem::path(DEM2D_SOURCE_DIR) / "tests/lib/cases"; }
 
+/// A path below the source root.
+inline std::filesystem::path source(const std::string& rel) { return std::filesystem::path(DEM2D_SOURCE_DIR) / rel; }
+
+/// An empty scratch folder <tmp>/<group>/<name> (removed first).
+inline std::filesystem::path fresh_dir(const std::string& group, const std::string& name) {
+  const auto d = std::filesystem::temp_directory_path() / group / name;
+  std::filesystem::remove_all(d);
+  return d;
+}
+
+/// A whole file as bytes.
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 }  // namespace test
