@@ -73,6 +73,8 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"beam.peak_load", {"b", "h", "L", "sigma_t"}},
       {"beam.first_crack_ratio", {"n_h", "N", "ends"}},
       {"beam.groove_first_crack_load", {"b", "h", "L", "sigma_t", "n_h", "N", "ends", "R"}},
+      {"base_friction.pre_face_rate", {"theta", "alpha", "W", "H", "n_w", "n_h"}},
+      {"base_friction.theta_pre_face", {"alpha", "delta_B", "W", "H", "n_w", "n_h"}},
   };
   const auto infos = ref::solvers();
   CHECK(infos.size() == expected.size());
