@@ -6,6 +6,7 @@
 
 #include "ref/base_friction.hpp"
 #include "ref/base_friction_m21.hpp"
+#include "ref/base_friction_pre_face.hpp"
 #include "ref/base_friction_travel.hpp"
 #include "ref/beam.hpp"
 #include "ref/block_on_incline.hpp"
@@ -316,6 +317,26 @@ const std::vector<Entry>& table() {
          {"D", "m", "slot width"}, {"k", "1", "empty-annulus factor"}, {"d", "m", "grain diameter"}},
         "kg/(m s)"},
        [](const Args& a) { return beverloo_2d(a("C"), a("rho_b"), a("g"), a("D"), a("k"), a("d")); }},
+      {{"base_friction.pre_face_rate",
+        "quasi-static dtheta/ddelta_B of a rigid n_w x n_h PRE block whose pivot element touches the "
+        "slope by face-end springs fixed in the wall frame (M2, M12, M13.2, M15.2, M19, M21; "
+        "ref/base_friction_pre_face.hpp)",
+        {argument::rotation, argument::slope, argument::block_width, argument::block_height,
+         argument::elements_w, argument::elements_h},
+        "rad/m"},
+       [](const Args& a) {
+         return pre_face_rate(a("theta"), a("alpha"), a("W"), a("H"), a.count("n_w"), a.count("n_h"));
+       }},
+      {{"base_friction.theta_pre_face",
+        "rotation at plate travel delta_B under the PRE model's own quasi-static rate "
+        "(pre_face_rate; Odeint dopri5)",
+        {argument::slope, argument::plate_travel, argument::block_width, argument::block_height,
+         argument::elements_w, argument::elements_h},
+        "rad"},
+       [](const Args& a) {
+         return theta_at_travel_pre_face(a("delta_B"), a("alpha"), a("W"), a("H"), a.count("n_w"),
+                                         a.count("n_h"));
+       }},
   };
   return entries;
 }

@@ -3,6 +3,7 @@
 // relation (M22) and the rate under Matsui's element law (M21). Numbers from refs §3.3, §3.4, §3.5,
 // §3.7. A table printed with d decimals is checked to half a unit of its last digit (plus 1 %).
 #include <catch2/catch.hpp>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -11,6 +12,7 @@
 
 #include "ref/base_friction.hpp"
 #include "ref/base_friction_m21.hpp"
+#include "ref/base_friction_pre_face.hpp"
 #include "ref/base_friction_travel.hpp"
 
 using Catch::Matchers::WithinAbs;
@@ -520,4 +522,115 @@ TEST_CASE("base friction: bad input is rejected", "[base_friction]") {
   CHECK_THROWS_AS(ref::m21_lambda(1.0, 0.025, 0.075, 1, 2), std::invalid_argument);  // not square
   CHECK_THROWS_AS(ref::m21_moment(0.0, 1.0, 0.025, -0.075, 1, 3), std::invalid_argument);
   CHECK_THROWS_AS(ref::theta_at_travel_m21(0.01, 1.0, 0.025, 0.075, 2, 3), std::invalid_argument);
+}
+
+// The PRE model's own quasi-static rate (ref/base_friction_pre_face.hpp). An independent evaluation of
+// the moment about A: the centre c_0(θ) of the pivot element from the constraints (corner on the
+// slope, c_0x + r θ fixed), its velocity by a central difference in θ, every element's velocity as
+// ċ_0 + Ω ẑ x (c_e - c_0) (no instantaneous centre), all in world coordinates.
+namespace {
+double pre_face_moment_by_velocities(double lambda, double theta, double alpha, double w, double h,
+                                     int n_w, int n_h) {
+  const double r = 0.5 * w / n_w;
+  const auto centre = [&](double t) {
+    return std::array<double, 2>{r - r * t, r * (std::cos(t) + std::sin(t))};
+  };
+  const double dt = 1e-6;
+  const auto plus = centre(theta + dt), minus = centre(theta - dt), c0 = centre(theta);
+  const double vx = lambda * (plus[0] - minus[0]) / (2 * dt), vy = lambda * (plus[1] - minus[1]) / (2 * dt);
+  const double ax = c0[0] - r, ay = c0[1] - r;  // the resultant point of (M12) in the wall frame
+  const double gx = -std::sin(alpha), gy = -std::cos(alpha);
+  double sum = 0.0;
+  for (int j = 0; j < n_h; ++j)
+    for (int i = 0; i < n_w; ++i) {
+      const double bx = 2 * r * i, by = 2 * r * j;
+      const double ex = c0[0] + std::cos(theta) * bx - std::sin(theta) * by;
+      const double ey = c0[1] + std::sin(theta) * bx + std::cos(theta) * by;
+      const double ux = vx - lambda * (ey - c0[1]) - gx, uy = vy + lambda * (ex - c0[0]) - gy;
+      const double speed = std::sqrt(ux * ux + uy * uy + lambda * lambda * r * r);
+      sum += ((ex - ax) * uy - (ey - ay) * ux + 2.0 / 3.0 * r * r * lambda) / speed;
+    }
+  return 4 * r * r * sum;
+}
+}  // namespace
+
+TEST_CASE("PRE face: at theta = 0 the rate is the M21 rate", "[base_friction][pre_face]") {
+  for (double alpha_deg : {20.0, 30.0, 45.0, 60.0, 75.0}) {
+    const double alpha = alpha_deg * degree;
+    for (auto law : {ref::WallTangentialLaw::linearised, ref::WallTangentialLaw::exact}) {
+      CHECK_THAT(ref::pre_face_rate(0.0, alpha, seed_w, seed_h, 1, 3, law),
+                 WithinRel(ref::m21_rate(alpha, seed_w, seed_h, 1, 3), 1e-11));
+      CHECK_THAT(ref::pre_face_rate(0.0, alpha, seed_w, seed_h, 5, 15, law),
+                 WithinRel(ref::m21_rate(alpha, seed_w, seed_h, 5, 15), 1e-11));
+    }
+  }
+}
+
+TEST_CASE("PRE face: the moment about A agrees with an evaluation from the constraints",
+          "[base_friction][pre_face]") {
+  for (double theta_deg : {0.0, 2.0, 10.0, 35.0, 60.0}) {
+    for (double lambda : {0.0, 3.0, 10.0, 40.0}) {
+      for (int n : {1, 2, 5}) {
+        const double expected =
+            pre_face_moment_by_velocities(lambda, theta_deg * degree, 50 * degree, seed_w, seed_h, n, 3 * n);
+        CHECK_THAT(ref::pre_face_moment(lambda, theta_deg * degree, 50 * degree, seed_w, seed_h, n, 3 * n),
+                   WithinAbs(expected, 1e-8 * seed_w * seed_h * seed_h));
+      }
+    }
+  }
+}
+
+TEST_CASE("PRE face: one root in the bracket, the rate lags M21 more as theta grows",
+          "[base_friction][pre_face]") {
+  const double alpha = 30 * degree;
+  double previous = 0.0;
+  for (double theta_deg : {0.2, 0.4, 1.7, 10.0, 30.0}) {
+    const double theta = theta_deg * degree;
+    const double rate = ref::pre_face_rate(theta, alpha, seed_w, seed_h, 1, 3);
+    // G < 0 below the root, > 0 above it, on a grid of the bracket
+    for (double f : {0.1, 0.5, 0.9})
+      CHECK(ref::pre_face_moment(f * rate, theta, alpha, seed_w, seed_h, 1, 3) < 0.0);
+    for (double f : {1.1, 2.0, 10.0, 100.0})
+      CHECK(ref::pre_face_moment(f * rate, theta, alpha, seed_w, seed_h, 1, 3) > 0.0);
+    const double lag = rate / ref::m21_rate(alpha + theta, seed_w, seed_h, 1, 3) - 1.0;
+    CHECK(lag < previous);
+    previous = lag;
+  }
+  // the DEM's drift (verification/base_friction_topple/README.md: -0.5 %, -1.6 % at alpha = 60°)
+  CHECK_THAT(ref::pre_face_rate(1.4 * degree, 60 * degree, seed_w, seed_h, 1, 3) /
+                 ref::m21_rate(61.4 * degree, seed_w, seed_h, 1, 3),
+             WithinAbs(1.0 - 0.00514, 5e-5));
+  CHECK_THAT(ref::pre_face_rate(5.6 * degree, 60 * degree, seed_w, seed_h, 1, 3) /
+                 ref::m21_rate(65.6 * degree, seed_w, seed_h, 1, 3),
+             WithinAbs(1.0 - 0.01589, 5e-5));
+}
+
+TEST_CASE("PRE face: theta converges to Bray and Goodman as the elements shrink",
+          "[base_friction][pre_face]") {
+  const double alpha = 45 * degree, travel = 10 * mm;
+  const double exact = ref::theta_at_travel(travel, alpha, seed_w, seed_h, MomentEvaluation::closed_form);
+  double previous_error = 1.0;
+  for (int n : {1, 2, 3, 5, 10}) {
+    const double error = exact - ref::theta_at_travel_pre_face(travel, alpha, seed_w, seed_h, n, 3 * n);
+    CHECK(error > 0.0);
+    CHECK(error < previous_error);
+    previous_error = error;
+  }
+  CHECK(previous_error < 0.003 * exact);
+  // exact tangential law (M3.2): the corner stays put (I = the corner), only the lever of A remains,
+  // and A lies r (1 - cos θ + sin θ) down-slope of the corner: slower still than the rolling of
+  // (M15.2), whose centre I lies above the corner (both below M21; measured 5.145°, 5.198°, 5.319°)
+  const double linearised = ref::theta_at_travel_pre_face(travel, alpha, seed_w, seed_h, 1, 3);
+  const double corner_fixed =
+      ref::theta_at_travel_pre_face(travel, alpha, seed_w, seed_h, 1, 3, ref::WallTangentialLaw::exact);
+  CHECK(corner_fixed < linearised);
+  CHECK(linearised < ref::theta_at_travel_m21(travel, alpha, seed_w, seed_h, 1, 3));
+}
+
+TEST_CASE("PRE face: bad input is rejected", "[base_friction][pre_face]") {
+  CHECK_THROWS_AS(ref::pre_face_rate(-0.1, 1.0, 0.025, 0.075, 1, 3), std::invalid_argument);
+  CHECK_THROWS_AS(ref::pre_face_rate(0.1, 1.6, 0.025, 0.075, 1, 3), std::invalid_argument);
+  CHECK_THROWS_AS(ref::pre_face_rate(0.1, 1.0, 0.025, 0.075, 1, 2), std::invalid_argument);
+  CHECK_THROWS_AS(ref::pre_face_moment(std::nan(""), 0.1, 1.0, 0.025, 0.075, 1, 3), std::invalid_argument);
+  CHECK_THROWS_AS(ref::theta_at_travel_pre_face(0.01, 1.0, 0.025, 0.075, 0, 3), std::invalid_argument);
 }

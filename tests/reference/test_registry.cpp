@@ -76,6 +76,8 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"silo.janssen_wall_force", {"z1", "z2", "rho_b", "g", "B", "K", "mu_w"}},
       {"silo.k_geom", {"s", "B", "r"}},
       {"silo.beverloo_2d", {"C", "rho_b", "g", "D", "k", "d"}},
+      {"base_friction.pre_face_rate", {"theta", "alpha", "W", "H", "n_w", "n_h"}},
+      {"base_friction.theta_pre_face", {"alpha", "delta_B", "W", "H", "n_w", "n_h"}},
   };
   const auto infos = ref::solvers();
   CHECK(infos.size() == expected.size());
