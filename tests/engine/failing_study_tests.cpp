@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "engine/study.hpp"
@@ -27,9 +28,17 @@ ver::StudyResult run(const std::string& name, const std::string& body) {
   return ver::run_study(dir / "study.toml", opt);
 }
 
+/// Full precision, so that the margins below are what the study file says.
+std::string num(double x) {
+  std::ostringstream o;
+  o.precision(17);
+  o << x;
+  return o.str();
+}
+
 std::string single(double value, const std::string& expect, double tolerance, const std::string& extra = "") {
-  return "kind = \"single\"\n" + extra + "\n[[check]]\nprobe = \"y_end\"\nvalue = " + std::to_string(value) +
-         "\nexpect = \"" + expect + "\"\ntolerance = " + std::to_string(tolerance) + "\nreason = \"engine test\"\n";
+  return "kind = \"single\"\n" + extra + "\n[[check]]\nprobe = \"y_end\"\nvalue = " + num(value) +
+         "\nexpect = \"" + expect + "\"\ntolerance = " + num(tolerance) + "\nreason = \"engine test\"\n";
 }
 
 bool check_passed(const ver::StudyResult& r) {
@@ -82,7 +91,7 @@ TEST_CASE("engine: an observed order outside the expected band fails the check",
                        "set = [\"numerics.velocity_start=plain\"]\n[[check]]\nprobe = \"y_end\"\n"
                        "reference = \"free_fall.position\"\nargs = { x0 = 2.0, v0 = 1.0, g = -9.80665, t = 0.5 }\n"
                        "tolerance = 1.0\nreason = \"engine test\"\nexpected_order = ") +
-           std::to_string(order) + "\norder_band = 0.2\n";
+           num(order) + "\norder_band = 0.2\n";
   };
   const auto ok = run("order_ok", refinement(1.0));
   CHECK(ok.passed);

@@ -31,7 +31,7 @@ constexpr double kn = 1e5, mass = 0.5, r = 0.01;
 TEST_CASE("stability guard: a disk on a wall with K_s = K_n is limited by the full x-phi row sum",
           "[stability]") {
   const auto integ = GENERATE(dem::Integrator::k18, dem::Integrator::k19);
-  const double eta = GENERATE(0.0, 60.0, 200.0);
+  const double eta = GENERATE(0.0, 60.0, 2000.0);  // K19 needs ζ > 1 to see the row (else Δt = η/K)
   CAPTURE(static_cast<int>(integ), eta);
   auto m = test::make_model({{"disk", 2650.0}, {"wall", 0.0}}, 1e-6);
   m.numerics.integrator = integ;
@@ -46,13 +46,13 @@ TEST_CASE("stability guard: a disk on a wall with K_s = K_n is limited by the fu
                                     row_limit(integ, kn * (2 + s2) / mass, eta * (2 + s2) / mass)});
   CHECK_THAT(sim.stability_limit(), WithinRel(expected, 1e-12));
   // The diagonal alone (φ: K_s r²/I = 2K_s/m) would give a limit that is clearly larger.
-  if (integ == dem::Integrator::k18 || eta > 100.0)
+  if (integ == dem::Integrator::k18 || eta > 1000.0)
     CHECK(row_limit(integ, 2.0 * kn / mass, 2.0 * eta / mass) > 1.05 * expected);
 }
 
 TEST_CASE("stability guard: a disk pair's spring counts on both elements' rows (2K_n/m)", "[stability]") {
   const auto integ = GENERATE(dem::Integrator::k18, dem::Integrator::k19);
-  const double eta = GENERATE(0.0, 150.0);
+  const double eta = GENERATE(0.0, 2000.0);
   CAPTURE(static_cast<int>(integ), eta);
   auto m = test::make_model({{"disk", 2650.0}}, 1e-6);
   m.numerics.integrator = integ;
