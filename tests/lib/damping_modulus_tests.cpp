@@ -44,9 +44,9 @@ TEST_CASE("Linear dashpots from a damping ratio: eta_n = 2 zeta sqrt(m K_n), eta
   }
 }
 
-TEST_CASE("PRE face springs and dashpots from moduli: K_s = k_s A/(r N), eta_s = eta_n sqrt(K_s/K_n)",
+TEST_CASE("PRE face springs and dashpots from moduli: K = k A/(r N), eta_s = eta_n sqrt(K_s/K_n)",
           "[face][damping]") {
-  const double r = 0.02, l = 0.5, kn_mod = 1e8, ks_mod = 3e7, vt = 0.1, dt = 1e-7;
+  const double r = 0.02, l = 0.5, kn_mod = 1e8, ks_mod = 3e7, vt = 0.1, vn = 0.03, dt = 1e-7;
   const int n = 2;
   const double h = GENERATE(0.0, 0.2);
   CAPTURE(h);
@@ -55,21 +55,28 @@ TEST_CASE("PRE face springs and dashpots from moduli: K_s = k_s A/(r N), eta_s =
   dem::PairLaw law = test::bonded_face_law(n, kn_mod, ks_mod, h);
   law.face_modulus = true;
   test::set_law(m, 0, 1, law);
-  dem::add_element(m, dem::Shape::pre, 0, r, {0.0, r}, {vt, 0.0});
+  dem::add_element(m, dem::Shape::pre, 0, r, {0.0, r}, {vt, -vn});
   m.walls.push_back(test::segment_wall({-1.0, 0.0}, {1.0, 0.0}, 1, "floor"));
   dem::Simulation sim(m);
   const double area = 2 * r * l;                     // (M1)
   const double kn = kn_mod * area / (r * n), ks = ks_mod * area / (r * n);  // (M6), wall: r₁ + r₂ → r₁
   const double mass = sim.model().elements.mass[0];
   const double eta_n = 2 * h * std::sqrt(kn * n * mass) / n, eta_s = eta_n * std::sqrt(ks / kn);
-  sim.step();  // geometric start: Q_e = 0, the dashpots see the first increment vΔt
+  sim.step();  // geometric start: P_e = K_n × overlap = 0, Q_e = 0; the dashpots see the first increment vΔt
   const auto c0 = sim.contact(0, 0, true);
-  if (h > 0.0) CHECK_THAT(c0.fs, WithinRel(n * eta_s * vt, 1e-9));
-  else CHECK(c0.fs == 0.0);
-  // The second increment Δv = Δx + rΔφ (M15.2) loads the shear springs.
+  if (h > 0.0) {
+    CHECK_THAT(c0.fs, WithinRel(n * eta_s * vt, 1e-9));
+    CHECK_THAT(c0.fn, WithinRel(n * eta_n * vn, 1e-9));
+  } else {
+    CHECK(c0.fs == 0.0);
+    CHECK(std::abs(c0.fn) < 1e-12);
+  }
+  // The second increments Δv = Δx + rΔφ (M15.2) and Δu = −Δy (M15.1; the ±aξΔφ parts cancel over
+  // the symmetric segments) load the springs.
   const double dv = sim.model().elements.dx[0] + r * sim.model().elements.dphi[0];
+  const double du = -sim.model().elements.dy[0];
   sim.step();
   const auto c1 = sim.contact(0, 0, true);
   CHECK_THAT(c1.fs, WithinRel(n * ks * dv + n * eta_s * dv / dt, 1e-9));
-  CHECK(std::abs(c1.fn) < 1e-9 * std::abs(c1.fs));
+  CHECK_THAT(c1.fn, WithinRel(n * kn * du + n * eta_n * du / dt, 1e-9));
 }

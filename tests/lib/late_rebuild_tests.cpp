@@ -9,10 +9,11 @@ namespace {
 
 constexpr double r = 0.01;
 
-dem::Model approach(double skin) {
+/// Two disks closing on each other, or a wall closing on a disk at rest (separate models: a moving
+/// wall triggers rebuilds that would hide a late rebuild for the pair).
+dem::Model approach(double skin, bool wall) {
   auto m = test::make_model({{"disk", 2650.0}, {"wall", 0.0}}, 1e-5);
   m.numerics.skin = skin;  // 0: a quarter of the smallest radius, 2.5 mm
-  m.laws.clear();
   dem::PairLaw law;
   law.kind = dem::LawKind::linear;
   law.linear.kn = 1e5;
@@ -21,9 +22,13 @@ dem::Model approach(double skin) {
   law.damping_ratio = 0.1;
   test::set_law(m, 0, 0, law);
   test::set_law(m, 0, 1, law);
-  // Two disks 9.7 mm (3.9 skins) apart closing at 2 m/s, slightly off-centre.
-  dem::add_element(m, dem::Shape::disk, 0, r, {0.0, 1.0}, {1.0, 0.0}, 0.0);
-  dem::add_element(m, dem::Shape::disk, 0, r, {0.0297, 1.003}, {-1.0, 0.0}, 0.0);
+  if (!wall) {
+    // Two disks 9.85 mm (3.9 skins) apart closing at 2 m/s, slightly off-centre. With rebuilds after a
+    // whole skin (not half) they would first be candidates 4 steps after touching.
+    dem::add_element(m, dem::Shape::disk, 0, r, {0.0, 1.0}, {1.0, 0.0}, 0.0);
+    dem::add_element(m, dem::Shape::disk, 0, r, {0.0297, 1.003}, {-1.0, 0.0}, 0.0);
+    return m;
+  }
   // A disk at rest and a wall 9.9 mm (≈ 4 skins) below it, moving up at 1 m/s.
   dem::add_element(m, dem::Shape::disk, 0, r, {0.5, 0.0});
   dem::VelocityHistory up;
@@ -39,7 +44,9 @@ dem::Model approach(double skin) {
 }  // namespace
 
 TEST_CASE("Contacts between elements that start more than a skin apart are found in time", "[neighbours]") {
-  dem::Simulation a(approach(0.0)), b(approach(1.0));
+  const bool wall = GENERATE(false, true);
+  CAPTURE(wall);
+  dem::Simulation a(approach(0.0, wall)), b(approach(1.0, wall));
   std::size_t most = 0;
   for (int k = 0; k < 2000; ++k) {
     a.step();
@@ -47,7 +54,7 @@ TEST_CASE("Contacts between elements that start more than a skin apart are found
     most = std::max(most, a.contact_count());
     REQUIRE(a.contact_count() == b.contact_count());
   }
-  CHECK(most == 2);             // the pair and the wall contact
+  CHECK(most == 1);             // the pair, or the wall contact
   CHECK(a.rebuilds() > 3);      // the default skin needed rebuilds
   CHECK(b.rebuilds() == 1);     // the huge skin did not
   const auto& ea = a.model().elements;
@@ -60,6 +67,6 @@ TEST_CASE("Contacts between elements that start more than a skin apart are found
     CHECK(ea.vy[i] == eb.vy[i]);
     CHECK(ea.omega[i] == eb.omega[i]);
   }
-  CHECK(ea.vx[0] < 0.0);  // the pair bounced
-  CHECK(ea.vy[2] > 0.5);  // the piston pushed the resting disk
+  if (!wall) CHECK(ea.vx[0] < 0.0);  // the pair bounced
+  if (wall) CHECK(ea.vy[0] > 0.5);   // the piston pushed the resting disk
 }
