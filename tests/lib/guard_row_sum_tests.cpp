@@ -63,3 +63,17 @@ TEST_CASE("stability guard: a disk pair's spring counts on both elements' rows (
   // Row x of element 0: K_n (1/√m)(1/√m + 1/√m) = 2K_n/m; the diagonal alone is K_n/m.
   CHECK_THAT(sim.stability_limit(), WithinRel(row_limit(integ, 2 * kn / mass, 2 * eta / mass), 1e-12));
 }
+
+TEST_CASE("stability guard: a PRE face's segments act on the rotation through their levers a xi", "[stability]") {
+  auto m = test::make_model({{"block", 2000.0}, {"wall", 0.0}}, 1e-7);
+  dem::PairLaw law = test::bonded_face_law(2, kn, 0.0, 0.0);
+  law.face.positions = dem::SegmentPositions::ends;  // ξ = ±1 (M13.2)
+  test::set_law(m, 0, 1, law);
+  dem::add_element(m, dem::Shape::pre, 0, r, {0.0, r}, {}, 0.0, dem::PreMass::square, mass);  // I = (2/3) r² m
+  m.walls.push_back(test::segment_wall({-1.0, 0.0}, {1.0, 0.0}, 1, "floor"));
+  const dem::Simulation sim(m);
+  // Each segment: b = (0, −1, −aξ), a = r; a/√I = √(3/2)/√m. Row φ: 2 K_n √1.5 (1 + √1.5)/m,
+  // row y: 2 K_n (1 + √1.5)/m. Without the levers it would be 2K_n/m.
+  const double s = std::sqrt(1.5);
+  CHECK_THAT(sim.stability_limit(), WithinRel(row_limit(dem::Integrator::k18, 2 * kn * s * (1 + s) / mass, 0.0), 1e-12));
+}
