@@ -90,7 +90,8 @@ results="$work/results.tsv"
 current=""
 # Restore the original text with a new time stamp, so that the next build recompiles it.
 restore() { if [[ -n "$current" ]]; then cp "$orig/saved" "$src/$current"; touch "$src/$current"; current=""; fi; }
-trap restore EXIT INT TERM
+trap restore EXIT
+trap 'restore; exit 130' INT TERM  # stop, with the file restored
 
 for id in "${ids[@]}"; do
   IFS=$'\t' read -r file breaks < <(python3 "$tool" show "$mutants" "$id")
