@@ -96,7 +96,7 @@ TEST_CASE("A driven element follows its drive and does not rotate", "[walls]") {
   CHECK(e.phi[i] == 0.0);
 }
 
-TEST_CASE("A velocity table in a case file drives a wall; a wrong entry is a located error", "[walls][case]") {
+TEST_CASE("A velocity table in a case file drives a wall, and a wrong entry is a located error", "[walls][case]") {
   const auto path = std::string(DEM2D_SOURCE_DIR) + "/tests/lib/cases/drive_table.toml";
   dem::Case c = dem::read_case(path);
   dem::Simulation sim(c.model);
