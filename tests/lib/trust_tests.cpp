@@ -342,7 +342,7 @@ direction = "down"
 
 // ---- item 7 --------------------------------------------------------------------------------------
 
-TEST_CASE("settle: a bounce's turning point does not stop the run; the force ratio is a second criterion", "[trust][run]") {
+TEST_CASE("settle: a bounce's turning point does not stop the run, and the force ratio is a second criterion", "[trust][run]") {
   // A lightly damped disk bouncing on a floor, W = ω₀Δt = 1e-3. Kiyama's criterion with factor f:
   // mean |Δu|, |Δv| < f Δt² g holds at an apex for about 4f steps, and at rest once the oscillation's
   // force amplitude is below about 2 f W of the weight.
