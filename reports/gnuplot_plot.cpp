@@ -41,7 +41,9 @@ std::string with_clause(const Curve& curve, std::size_t index) {
   // Later curves drawn thinner, so that one lying exactly on an earlier one leaves it visible.
   const double lw = std::max(1.2, 3.0 - 0.6 * static_cast<double>(index));
   if (curve.style == "lines") return fmt::format("with lines dt {} lw {:.1f}", dt, lw);
-  if (curve.style == "points") return fmt::format("with points pt {} ps 0.9", pt);
+  if (curve.style == "points")
+    return fmt::format("with points pt {} ps {:.2g}", curve.point_type > 0 ? curve.point_type : pt,
+                       curve.point_size > 0.0 ? curve.point_size : 0.9);
   return fmt::format("with linespoints dt {} lw 2 pt {} ps 0.9", dt, pt);
 }
 
@@ -175,6 +177,12 @@ std::string gnuplot_script(const Plot& plot, const std::filesystem::path& svg_fi
       s += fmt::format("set format {} '%.{}g'\n", along_x ? "x" : "y", digits);
     }
   }
+  if (!plot.yticks.empty()) {
+    std::string list;
+    for (const auto& [v, label] : plot.yticks)
+      list += fmt::format("{}'{}' {:.17g}", list.empty() ? "" : ", ", gnuplot_label(label), v);
+    s += "set ytics (" + list + ")\nset grid noytics\n";
+  }
   if (plot.xrange.size() == 2) s += fmt::format("set xrange [{:.17g}:{:.17g}]\n", plot.xrange[0], plot.xrange[1]);
   if (plot.yrange.size() == 2) s += fmt::format("set yrange [{:.17g}:{:.17g}]\n", plot.yrange[0], plot.yrange[1]);
 
@@ -190,7 +198,9 @@ std::string gnuplot_script(const Plot& plot, const std::filesystem::path& svg_fi
         s += fmt::format("{:.17g} {:.17g}\n", curve.x[i], curve.y[i]);
     s += "EOD\n";
     std::string item = block + " using 1:2 " + with_clause(curve, colour);
-    if (!curve.dashed && curve.style != "reference" && curve.style != "band")
+    if (!curve.colour.empty())
+      item += " lc rgb '" + gnuplot_label(curve.colour) + "'";
+    else if (!curve.dashed && curve.style != "reference" && curve.style != "band")
       item += fmt::format(" lc rgb '{}'", curve_colours[colour++ % std::size(curve_colours)]);
     item += " title '" + gnuplot_label(curve.label) + "'";
     plot_items.push_back(item);

@@ -89,12 +89,18 @@ std::optional<Plot> figure_plot(const nlohmann::json& figure, std::string& why_n
     const auto r = number_array(figure, key);
     if (r.size() == 2 && r[0] && r[1] && *r[0] < *r[1]) *out = {*r[0], *r[1]};
   }
+  for (const auto& tick : array_field(figure, "yticks"))
+    if (tick.is_array() && tick.size() == 2 && tick[0].is_number() && tick[1].is_string())
+      plot.yticks.emplace_back(tick[0].get<double>(), tick[1].get<std::string>());
   std::size_t points = 0;
   for (const auto& entry : array_field(figure, "curves")) {
     Curve curve;
     curve.label = text_field(entry, "label");
     const auto style = text_field(entry, "style");
     curve.style = style.empty() ? "lines" : style;
+    curve.colour = text_field(entry, "colour");
+    curve.point_type = static_cast<int>(number_field(entry, "point").value_or(0.0));
+    curve.point_size = number_field(entry, "size").value_or(0.0);
     const auto x = number_array(entry, "x");
     const auto y = number_array(entry, "y");
     for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) {

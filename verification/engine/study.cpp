@@ -74,6 +74,8 @@ struct Figure {
   // A figure of probe values across variants: x = the variant argument x_arg, y = the probe, one
   // curve per distinct value of group_arg (or one curve), plus the reference solver if given.
   std::string probe, group_arg, group_label;
+  std::int64_t reference_points = 0;
+  bool reference_per_variant = false;  // series figure: one reference curve per variant (its own args)  // > 1: the reference on a uniform grid of x_arg over the group's span
   std::map<std::string, std::string> curve_labels;  // legend words per series quantity / solver
 };
 
@@ -332,6 +334,8 @@ Study read_study(const fs::path& file) {
       f.probe = (*t)["probe"].value_or(std::string());
       f.group_arg = (*t)["group_arg"].value_or(std::string());
       f.group_label = (*t)["group_label"].value_or(f.group_arg);
+      f.reference_points = (*t)["reference_points"].value_or(int64_t{0});
+      f.reference_per_variant = (*t)["reference_per_variant"].value_or(false);
       if (!f.probe.empty() && f.x_arg == "t") fail_at(s, n, "figure.x_arg", "a probe figure needs x_arg: the variant argument on x");
       for (const char* key : {"x_range", "y_range"}) {
         if (const toml::node* r = t->get(key)) {
@@ -350,7 +354,7 @@ Study read_study(const fs::path& file) {
   if (root.get("table") && !root["table"].as_array())
     fail_at(s, *root.get("table"), "table", "expected [[table]] tables");
   if (const toml::array* ta = root["table"].as_array()) {
-    if (s.kind != Kind::single && s.kind != Kind::refinement) fail(s, "table", "declared tables need kind = \"single\" or \"refinement\"");
+    if (s.kind == Kind::mode_map) fail(s, "table", "declared tables need kind = single, refinement or stability");
     for (const auto& n : *ta) {
       const toml::table* t = n.as_table();
       if (!t) fail_at(s, n, "table", "expected [[table]] tables");
@@ -554,6 +558,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
     return r.probes.count(probe) ? r.probes.at(probe) : std::nullopt;
   };
   nlohmann::json s_tables = nlohmann::json::array(), s_setup_extra = nlohmann::json::object();
+  nlohmann::json mode_chart;  // mode_map: the coloured chart (first figure)
   if (s.kind == Kind::single || s.kind == Kind::refinement) {
     const std::size_t nl = s.kind == Kind::single ? 1 : s.values.size();
     std::vector<RunOut> runs(s.variants.size() * nl);
@@ -777,6 +782,50 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
                               s.margin * 180.0 / std::numbers::pi));
       }
     map << "(. stable, S slide, T topple, X slide + topple; ~ within the margin of a mode boundary, not checked; ! disagrees)\n";
+    {  // the same map as a coloured chart: rows = block and φ, x = α; ring = Sagaseta, dot = DEM
+      const char* names[] = {"stable", "slide", "topple", "slide + topple"};
+      const char* colours[] = {"#2ca02c", "#1f77b4", "#d62728", "#9467bd"};
+      nlohmann::json curves = nlohmann::json::array(), yticks = nlohmann::json::array();
+      std::vector<std::vector<double>> rx(4), ry(4), dx(4), dy(4);
+      std::vector<double> ex, ey, fx, fy;
+      for (const Point& p : pts) {
+        const double row = static_cast<double>(p.block * s.phis.size() + p.phi);
+        const double a = s.alphas[p.alpha] * 180.0 / std::numbers::pi;
+        rx[p.ref].push_back(a);
+        ry[p.ref].push_back(row);
+        if (p.dem >= 0) {
+          dx[p.dem].push_back(a);
+          dy[p.dem].push_back(row);
+        } else {
+          fx.push_back(a);
+          fy.push_back(row);
+        }
+        if (p.near_boundary) {
+          ex.push_back(a);
+          ey.push_back(row);
+        }
+      }
+      for (int m = 0; m < 4; ++m)
+        curves.push_back({{"label", fmt::format("Sagaseta: {}", names[m])}, {"x", rx[m]}, {"y", ry[m]},
+                          {"style", "points"}, {"colour", colours[m]}, {"point", 6}, {"size", 2.4}});
+      for (int m = 0; m < 4; ++m)
+        curves.push_back({{"label", fmt::format("DEM: {}", names[m])}, {"x", dx[m]}, {"y", dy[m]},
+                          {"style", "points"}, {"colour", colours[m]}, {"point", 7}, {"size", 1.1}});
+      curves.push_back({{"label", "near a boundary: not checked"}, {"x", ex}, {"y", ey}, {"style", "points"},
+                        {"colour", "#000000"}, {"point", 2}, {"size", 1.8}});
+      curves.push_back({{"label", "DEM run failed"}, {"x", fx}, {"y", fy}, {"style", "points"},
+                        {"colour", "#000000"}, {"point", 3}, {"size", 1.8}});
+      for (std::size_t b = 0; b < s.blocks.size(); ++b)
+        for (std::size_t f = 0; f < s.phis.size(); ++f)
+          yticks.push_back({static_cast<double>(b * s.phis.size() + f),
+                            fmt::format("{}×{}, φ={:.0f}°", s.blocks[b].first, s.blocks[b].second,
+                                        s.phis[f] * 180.0 / std::numbers::pi)});
+      const double rows_n = static_cast<double>(s.blocks.size() * s.phis.size());
+      mode_chart = {{"id", "mode_map"}, {"title", "Mode map: Sagaseta (ring) against the DEM (dot), same colour = agreement"},
+                    {"xlabel", "slope angle α [deg]"}, {"ylabel", "block (columns × rows) and friction angle φ"},
+                    {"logx", false}, {"logy", false}, {"curves", curves}, {"yticks", yticks},
+                    {"yrange", {-0.7, rows_n - 0.3}}};
+    }
     s_tables.push_back({{"title", "Mode map: Sagaseta (ref) against the DEM"}, {"preformatted", map.str()}});
     s_tables.push_back({{"title", "Agreement per block and friction angle"},
                         {"columns", {"block", "phi [deg]", "agree / checked", "excluded (near a boundary)"}},
@@ -813,6 +862,11 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       }
       limits[vi] = 0.5 * (lo + hi);
     });
+    for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {  // probe "limit" for figures and tables
+      RunOut r;
+      r.probes["limit"] = limits[vi];
+      finest_runs.push_back(r);
+    }
     for (const Check& c : s.checks)
       for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
         if (!applies(c, s.variants[vi])) continue;
@@ -837,6 +891,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
     return only.empty() || std::find(only.begin(), only.end(), label) != only.end();
   };
   nlohmann::json figures = nlohmann::json::array();
+  if (!mode_chart.is_null()) figures.push_back(mode_chart);
   for (const Figure& f : s.figures) {
     nlohmann::json curves = nlohmann::json::array();
     if (!f.probe.empty()) {
@@ -850,6 +905,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       }
       for (double g : groups) {
         std::vector<double> px, py, rx, ry;
+        std::map<std::string, double> ref_args;
         for (std::size_t vi = 0; vi < s.variants.size() && vi < finest_runs.size(); ++vi) {
           const Variant& v = s.variants[vi];
           if (!listed(f.variants, v.label) || !v.args.count(f.x_arg)) continue;
@@ -860,7 +916,20 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
           if (!f.solver.empty()) {
             std::map<std::string, double> args = v.args;
             for (const auto& [k, x] : f.args) args[k] = x;
+            if (ref_args.empty()) ref_args = args;
             rx.push_back(px.back());
+            ry.push_back(evaluate(f.solver, args) * f.ref_scale * f.y_scale);
+          }
+        }
+        if (f.reference_points > 1 && !rx.empty()) {  // a smooth curve over the group's span of x_arg
+          const auto [lo, hi] = std::minmax_element(rx.begin(), rx.end());
+          const double a = *lo / f.x_scale, b = *hi / f.x_scale;
+          rx.clear();
+          ry.clear();
+          for (std::int64_t k = 0; k < f.reference_points; ++k) {
+            std::map<std::string, double> args = ref_args;
+            args[f.x_arg] = a + (b - a) * static_cast<double>(k) / static_cast<double>(f.reference_points - 1);
+            rx.push_back(args[f.x_arg] * f.x_scale);
             ry.push_back(evaluate(f.solver, args) * f.ref_scale * f.y_scale);
           }
         }
@@ -918,7 +987,19 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
         }
         const std::string name = v.label.empty() ? std::string("DEM") : "DEM " + v.label;
         curves.push_back({{"label", words(f, v.label, name)}, {"x", px}, {"y", py}, {"style", "lines"}});
+        if (f.reference_per_variant && !f.solver.empty() && !f.y_minus_reference) {
+          std::vector<double> rx, ry;
+          for (double x : xs) {
+            std::map<std::string, double> a = vargs;
+            a[f.x_arg] = x;
+            rx.push_back(x * f.x_scale);
+            ry.push_back(evaluate(f.solver, a) * f.ref_scale * f.y_scale);
+          }
+          curves.push_back({{"label", words(f, f.solver, "reference") + ", " + v.label}, {"x", rx}, {"y", ry},
+                            {"style", "reference"}});
+        }
       }
+      if (f.reference_per_variant) ref_x.clear();
       if (!f.solver.empty() && !ref_x.empty() && !f.y_minus_reference) {
         std::vector<double> px, py;
         for (double x : ref_x) {
