@@ -314,7 +314,7 @@ Study read_study(const fs::path& file) {
       f.title = (*t)["title"].value_or(f.id);
       f.x = (*t)["x"].value_or(std::string("t"));
       f.y = (*t)["y"].value_or(std::string());
-      if (f.y.empty()) fail(s, "figure.y", "missing: the series quantity to plot");
+      if (f.y.empty() && !t->get("probe")) fail_at(s, n, "figure.y", "missing: the series quantity to plot (or probe = a probe across variants)");
       f.xlabel = (*t)["xlabel"].value_or(f.x);
       f.ylabel = (*t)["ylabel"].value_or(f.y);
       f.x_scale = (*t)["x_scale"].value_or(1.0);
@@ -576,7 +576,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
         std::vector<std::string> q;
         std::int64_t every = 0;
         for (const Figure& f : s.figures)
-          if (f.variants.empty() || std::find(f.variants.begin(), f.variants.end(), v.label) != f.variants.end()) {
+          if (f.probe.empty() && (f.variants.empty() || std::find(f.variants.begin(), f.variants.end(), v.label) != f.variants.end())) {
             q.push_back(f.x);
             q.push_back(f.y);
             every = every ? std::min(every, f.every) : f.every;
