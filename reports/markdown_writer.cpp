@@ -128,7 +128,8 @@ std::string study_section(const StudyReport& study) {
   const auto& result = source.result;
   auto title = text_field(result, "title");
   if (title.empty()) title = study_name(source);
-  std::string out = "## " + escape(title) + " \u2014 " + status_text(study_status(source)) + "\n\n";
+  std::string out = "<a id=\"" + study_anchor(source) + "\"></a>\n\n## " + escape(title) + " \u2014 " +
+                    status_text(study_status(source)) + "\n\n";
   out += "Study `" + study_name(source) + "`, " + escape(source.path.string()) + "\n\n";
   if (!source.readable())
     return out + "Unreadable result file: " + escape(source.read_error) + "\n\n";

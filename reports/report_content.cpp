@@ -82,7 +82,8 @@ std::vector<HeaderField> header_fields(const nlohmann::json& provenance,
                                          ? *run_dates.begin()
                                          : *run_dates.begin() + " \u2013 " + *run_dates.rbegin()});
   fields.push_back({"Studies folder", studies_dir.string()});
-  for (auto& f : machine_fields()) fields.push_back(f);
+  for (auto& f : machine_fields())  // the app's provenance may name the compiler already
+    if (!(f.label == "Compiler" && provenance.is_object() && provenance.contains("compiler"))) fields.push_back(f);
   if (provenance.is_object())
     for (const auto& [key, value] : provenance.items())
       if (key != "code_version" && key != "build_type" && key != "machine" && key != "date")
