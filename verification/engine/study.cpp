@@ -935,7 +935,9 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
         }
         const std::string gname = f.group_arg.empty() ? "DEM" : fmt::format("{} = {:g}", f.group_label, g);
         const std::string gkey = f.group_arg.empty() ? "DEM" : fmt::format("{:g}", g);
-        curves.push_back({{"label", words(f, gkey, gname)}, {"x", px}, {"y", py}, {"style", "linespoints"}});
+        // Against a smooth reference curve the DEM values are points (no line between them to mislead).
+        curves.push_back({{"label", words(f, gkey, gname)}, {"x", px}, {"y", py},
+                          {"style", f.reference_points > 1 ? "points" : "linespoints"}});
         if (!rx.empty())
           curves.push_back({{"label", words(f, f.solver, "reference") + (f.group_arg.empty() ? "" : ", " + gname)},
                             {"x", rx}, {"y", ry}, {"style", "reference"}});
