@@ -807,12 +807,12 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       }
       for (int m = 0; m < 4; ++m)
         curves.push_back({{"label", fmt::format("Sagaseta: {}", names[m])}, {"x", rx[m]}, {"y", ry[m]},
-                          {"style", "points"}, {"colour", colours[m]}, {"point", 6}, {"size", 2.4}});
+                          {"style", "points"}, {"colour", colours[m]}, {"point", 6}, {"size", 1.5}});
       for (int m = 0; m < 4; ++m)
         curves.push_back({{"label", fmt::format("DEM: {}", names[m])}, {"x", dx[m]}, {"y", dy[m]},
-                          {"style", "points"}, {"colour", colours[m]}, {"point", 7}, {"size", 1.1}});
+                          {"style", "points"}, {"colour", colours[m]}, {"point", 7}, {"size", 0.75}});
       curves.push_back({{"label", "near a boundary: not checked"}, {"x", ex}, {"y", ey}, {"style", "points"},
-                        {"colour", "#000000"}, {"point", 2}, {"size", 1.8}});
+                        {"colour", "#000000"}, {"point", 2}, {"size", 1.2}});
       curves.push_back({{"label", "DEM run failed"}, {"x", fx}, {"y", fy}, {"style", "points"},
                         {"colour", "#000000"}, {"point", 3}, {"size", 1.8}});
       for (std::size_t b = 0; b < s.blocks.size(); ++b)
