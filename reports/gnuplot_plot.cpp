@@ -27,11 +27,24 @@ bool drawable(double x, double y, bool logx, bool logy) {
   return std::isfinite(x) && std::isfinite(y) && (!logx || x > 0.0) && (!logy || y > 0.0);
 }
 
-std::string with_clause(const Curve& curve) {
+// Dash patterns and point shapes of successive curves: solid, dashed, dotted, dash-dot, ...;
+// filled circle, square, triangle, diamond, ...
+constexpr int dash_types[] = {1, 2, 3, 4, 5};
+constexpr int point_types[] = {7, 5, 9, 13, 6, 4, 8, 12};
+
+std::string with_clause(const Curve& curve, std::size_t index) {
   if (curve.dashed) return "with lines dt 2 lw 1.5 lc rgb '#555555'";
-  if (curve.style == "lines") return "with lines lw 2";
-  if (curve.style == "points") return "with points pt 7 ps 0.8";
-  return "with linespoints lw 2 pt 7 ps 0.8";
+  if (curve.style == "reference") return "with lines dt 2 lw 2.5 lc rgb '#000000'";
+  if (curve.style == "band") return "with lines dt 3 lw 1.5 lc rgb '#a40e26'";
+  const int dt = dash_types[index % std::size(dash_types)];
+  const int pt = point_types[index % std::size(point_types)];
+  // Later curves drawn thinner, so that one lying exactly on an earlier one leaves it visible.
+  const double lw = std::max(1.2, 3.0 - 0.6 * static_cast<double>(index));
+  if (curve.style == "lines") return fmt::format("with lines dt {} lw {:.1f}", dt, lw);
+  if (curve.style == "points")
+    return fmt::format("with points pt {} ps {:.2g}", curve.point_type > 0 ? curve.point_type : pt,
+                       curve.point_size > 0.0 ? curve.point_size : 0.9);
+  return fmt::format("with linespoints dt {} lw 2 pt {} ps 0.9", dt, pt);
 }
 
 // A path inside a single-quoted gnuplot string.
@@ -153,6 +166,25 @@ std::string gnuplot_script(const Plot& plot, const std::filesystem::path& svg_fi
   s += "set key " + plot.key_position + " spacing 1.2\n";
   if (plot.logx) s += log_axis(plot, true);
   if (plot.logy) s += log_axis(plot, false);
+  // Plain decimal tick labels with enough digits that neighbours differ (gnuplot's %h); a given
+  // range replaces the automatic one.
+  for (bool along_x : {true, false}) {
+    if (along_x ? plot.logx : plot.logy) continue;
+    const auto [lo, hi] = data_range(plot, along_x);
+    const double magnitude = std::max(std::abs(lo), std::abs(hi)), span = hi - lo;
+    if (std::isfinite(magnitude) && span > 0.0 && magnitude / span > 1e3) {
+      const int digits = std::min(15, static_cast<int>(std::ceil(std::log10(magnitude / span))) + 3);
+      s += fmt::format("set format {} '%.{}g'\n", along_x ? "x" : "y", digits);
+    }
+  }
+  if (!plot.yticks.empty()) {
+    std::string list;
+    for (const auto& [v, label] : plot.yticks)
+      list += fmt::format("{}'{}' {:.17g}", list.empty() ? "" : ", ", gnuplot_label(label), v);
+    s += "set ytics (" + list + ")\nset grid noytics\n";
+  }
+  if (plot.xrange.size() == 2) s += fmt::format("set xrange [{:.17g}:{:.17g}]\n", plot.xrange[0], plot.xrange[1]);
+  if (plot.yrange.size() == 2) s += fmt::format("set yrange [{:.17g}:{:.17g}]\n", plot.yrange[0], plot.yrange[1]);
 
   std::vector<std::string> plot_items;
   std::size_t colour = 0;
@@ -165,8 +197,10 @@ std::string gnuplot_script(const Plot& plot, const std::filesystem::path& svg_fi
       if (drawable(curve.x[i], curve.y[i], plot.logx, plot.logy))
         s += fmt::format("{:.17g} {:.17g}\n", curve.x[i], curve.y[i]);
     s += "EOD\n";
-    std::string item = block + " using 1:2 " + with_clause(curve);
-    if (!curve.dashed)
+    std::string item = block + " using 1:2 " + with_clause(curve, colour);
+    if (!curve.colour.empty())
+      item += " lc rgb '" + gnuplot_label(curve.colour) + "'";
+    else if (!curve.dashed && curve.style != "reference" && curve.style != "band")
       item += fmt::format(" lc rgb '{}'", curve_colours[colour++ % std::size(curve_colours)]);
     item += " title '" + gnuplot_label(curve.label) + "'";
     plot_items.push_back(item);

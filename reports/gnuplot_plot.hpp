@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace report {
@@ -12,14 +13,21 @@ namespace report {
 struct Curve {
   std::string label;
   std::vector<double> x, y;  // non-finite points, and non-positive ones on a log axis, are dropped
-  std::string style = "linespoints";  // lines | points | linespoints
+  std::string style = "linespoints";  // lines | points | linespoints | reference (black, dashed) | band
   bool dashed = false;                // drawn thin, dashed and grey (reference slopes)
+  std::string colour;                 // "#rrggbb": overrides the colour cycle (e.g. one colour per mode)
+  int point_type = 0;                 // > 0: gnuplot point type, overriding the cycle
+  double point_size = 0.0;            // > 0: overrides the default size
+  // Successive lines / points of a plot get distinct dash patterns and point shapes, so that a
+  // curve lying on another stays visible.
 };
 
 struct Plot {
   std::string title, xlabel, ylabel;
   bool logx = false, logy = false;
-  std::string key_position = "top right";  // gnuplot "set key" position
+  std::string key_position = "top right";  // gnuplot "set key" position ("below": outside, under the plot)
+  std::vector<double> xrange, yrange;       // [lo, hi] when given; else from the data
+  std::vector<std::pair<double, std::string>> yticks;  // labelled y tics (e.g. rows of a map)
   std::vector<Curve> curves;
 };
 

@@ -38,6 +38,8 @@ figcaption { font-size: .9em; color: #57606a; margin-top: .2em; }
 .missing-figure { border: 1px dashed #d0d7de; padding: 2em 1em; color: #953800; }
 .small { font-size: .85em; color: #57606a; }
 pre { background: #f6f8fa; padding: .8em; overflow-x: auto; }
+.readme { white-space: pre-wrap; font-size: .92em; background: #f6f8fa; padding: .6em .8em; }
+table.overview td:nth-child(2) { max-width: 38em; }
 footer { margin-top: 3em; font-size: .85em; color: #57606a; }
 )";
 
@@ -83,41 +85,55 @@ std::string summary_section(const ReportContent& content) {
 
   out +=
       "<table class=\"checks\">\n<thead><tr><th>Study</th><th>Quantity</th><th>Reference</th>"
-      "<th>DEM</th><th>Error</th><th>Tolerance</th><th>Order (observed vs expected &plusmn; "
-      "band)</th><th>Result</th></tr></thead>\n<tbody>\n";
+      "<th>DEM</th><th>Error</th><th>Tolerance</th><th>Asserts</th><th>Order (observed vs expected "
+      "&plusmn; band)</th><th>Result</th></tr></thead>\n<tbody>\n";
   for (const auto& study : content.studies) {
     const auto& source = study.source;
     const auto link = fmt::format("<td><a href=\"#{}\">{}</a></td>", study_anchor(source),
                                   escape(study_name(source)));
     if (!source.readable()) {
-      out += "<tr>" + link + "<td colspan=\"6\">unreadable: " + escape(source.read_error) +
+      out += "<tr>" + link + "<td colspan=\"7\">unreadable: " + escape(source.read_error) +
              "</td>" + status_cell("UNREADABLE") + "</tr>\n";
       continue;
     }
     const auto& checks = array_field(source.result, "checks");
     if (checks.empty())
-      out += "<tr>" + link + "<td colspan=\"6\">(no checks)</td>" +
+      out += "<tr>" + link + "<td colspan=\"7\">(no checks)</td>" +
              status_cell(study_status(source)) + "</tr>\n";
     for (const auto& check : checks) {
       const auto row = check_row(check);
       out += "<tr>" + link + cell(row.quantity) + num_cell(row.reference) + num_cell(row.dem) +
-             num_cell(row.error) + num_cell(row.tolerance) + num_cell(row.order) +
-             status_cell(row.status) + "</tr>\n";
+             num_cell(row.error) + num_cell(row.tolerance) + cell(row.asserts) +
+             num_cell(row.order) + status_cell(row.status) + "</tr>\n";
     }
   }
+  return out + "</tbody>\n</table>\n</section>\n";
+}
+
+std::string overview_section(const ReportContent& content) {
+  std::string out =
+      "<section id=\"contents\">\n<h2>Studies</h2>\n<table class=\"overview\">\n<thead><tr>"
+      "<th>Study</th><th>Title</th><th>Checks passed</th><th>Checks failed</th>"
+      "<th>Observed orders (expected)</th><th>Wall time</th><th>Result</th></tr></thead>\n<tbody>\n";
+  for (const auto& row : overview_rows(content))
+    out += fmt::format("<tr><td><a href=\"#{}\">{}</a></td>", row.anchor, escape(row.name)) +
+           cell(row.title) + num_cell(std::to_string(row.passed)) +
+           num_cell(std::to_string(row.failed)) + cell(row.orders) + num_cell(row.wall_time) +
+           status_cell(row.status) + "</tr>\n";
   return out + "</tbody>\n</table>\n</section>\n";
 }
 
 std::string checks_table(const nlohmann::json& checks) {
   std::string out =
       "<table class=\"checks\">\n<thead><tr><th>Quantity</th><th>Reference</th>"
-      "<th>DEM</th><th>Error</th><th>Tolerance</th><th>Why this tolerance</th>"
+      "<th>DEM</th><th>Error</th><th>Tolerance</th><th>Asserts</th><th>Why this tolerance</th>"
       "<th>Order (observed vs expected &plusmn; band)</th><th>Result</th>"
       "<th>Note</th></tr></thead>\n<tbody>\n";
   for (const auto& check : checks) {
     const auto row = check_row(check);
     out += "<tr>" + cell(row.quantity) + num_cell(row.reference) + num_cell(row.dem) +
-           num_cell(row.error) + num_cell(row.tolerance) + cell(row.tolerance_reason) +
+           num_cell(row.error) + num_cell(row.tolerance) + cell(row.asserts) +
+           cell(row.tolerance_reason) +
            num_cell(row.order) + status_cell(row.status) + cell(row.note) + "</tr>\n";
   }
   return out + "</tbody>\n</table>\n";
@@ -192,6 +208,21 @@ std::string study_section(const StudyReport& study) {
   if (!requirement.empty())
     out +=
         "<p class=\"requirement\"><strong>Requirement.</strong> " + escape(requirement) + "</p>\n";
+  const auto readme = readme_parts(result);
+  if (!readme.purpose.empty()) {
+    out += "<p class=\"purpose\"><strong>Purpose (README).</strong> " + escape(readme.purpose) + "</p>\n";
+    if (!readme.rest.empty())
+      out += "<details open><summary>Findings and known limits (README)</summary>\n<div class=\"readme\">" +
+             escape(readme.rest) + "</div>\n</details>\n";
+  }
+  const auto& provenance = object_field(result, "provenance");
+  const auto command = text_field(provenance, "command");
+  if (!command.empty()) {
+    out += "<p class=\"small\">Command: <code>" + escape(command) + "</code>";
+    if (const auto wall = number_field(provenance, "wall_time_s"))
+      out += fmt::format(" &middot; wall time {:.1f} s", *wall);
+    out += "</p>\n";
+  }
   const auto setup = setup_fields(result);
   if (!setup.empty()) out += "<h3>Setup</h3>\n" + key_value_table(setup, "setup");
   const auto reference = text_field(result, "reference");
@@ -230,6 +261,7 @@ std::string html_page(const ReportContent& content) {
   out += "<title>" + escape(content.title) + "</title>\n<style>" + style_sheet + "</style>\n";
   out += "</head>\n<body>\n<header>\n<h1>" + escape(content.title) + "</h1>\n";
   out += key_value_table(content.header, "meta") + "</header>\n<main>\n";
+  out += overview_section(content);
   out += summary_section(content);
   for (const auto& study : content.studies) out += study_section(study);
   out +=

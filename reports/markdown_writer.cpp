@@ -106,19 +106,19 @@ std::string summary(const ReportContent& content) {
     const auto name = study_name(source);
     if (!source.readable()) {
       rows.push_back(
-          {{name, "unreadable: " + source.read_error, "", "", "", "", ""}, "UNREADABLE"});
+          {{name, "unreadable: " + source.read_error, "", "", "", "", "", ""}, "UNREADABLE"});
       continue;
     }
     const auto& checks = array_field(source.result, "checks");
     if (checks.empty())
-      rows.push_back({{name, "(no checks)", "", "", "", "", ""}, study_status(source)});
+      rows.push_back({{name, "(no checks)", "", "", "", "", "", ""}, study_status(source)});
     for (const auto& check : checks) {
       const auto r = check_row(check);
       rows.push_back(
-          {{name, r.quantity, r.reference, r.dem, r.error, r.tolerance, r.order}, r.status});
+          {{name, r.quantity, r.reference, r.dem, r.error, r.tolerance, r.asserts, r.order}, r.status});
     }
   }
-  return out + checks_table({"Study", "Quantity", "Reference", "DEM", "Error", "Tolerance",
+  return out + checks_table({"Study", "Quantity", "Reference", "DEM", "Error", "Tolerance", "Asserts",
                              "Order (observed vs expected \u00b1 band)"},
                             rows);
 }
@@ -128,13 +128,26 @@ std::string study_section(const StudyReport& study) {
   const auto& result = source.result;
   auto title = text_field(result, "title");
   if (title.empty()) title = study_name(source);
-  std::string out = "## " + escape(title) + " \u2014 " + status_text(study_status(source)) + "\n\n";
+  std::string out = "<a id=\"" + study_anchor(source) + "\"></a>\n\n## " + escape(title) + " \u2014 " +
+                    status_text(study_status(source)) + "\n\n";
   out += "Study `" + study_name(source) + "`, " + escape(source.path.string()) + "\n\n";
   if (!source.readable())
     return out + "Unreadable result file: " + escape(source.read_error) + "\n\n";
 
   const auto requirement = text_field(result, "requirement");
   if (!requirement.empty()) out += "**Requirement.** " + escape(requirement) + "\n\n";
+  const auto readme = readme_parts(result);
+  if (!readme.purpose.empty()) {
+    out += "**Purpose (README).** " + escape(readme.purpose) + "\n\n";
+    if (!readme.rest.empty()) out += "**Findings and known limits (README).**\n\n" + fence(readme.rest);
+  }
+  const auto& provenance = object_field(result, "provenance");
+  const auto command = text_field(provenance, "command");
+  if (!command.empty()) {
+    out += "Command: `" + command + "`";
+    if (const auto wall = number_field(provenance, "wall_time_s")) out += fmt::format(" · wall time {:.1f} s", *wall);
+    out += "\n\n";
+  }
   const auto setup = setup_fields(result);
   if (!setup.empty()) out += "### Setup\n\n" + key_value_table(setup);
   const auto reference = text_field(result, "reference");
@@ -144,12 +157,12 @@ std::string study_section(const StudyReport& study) {
     std::vector<std::pair<std::vector<std::string>, std::string>> rows;
     for (const auto& check : checks) {
       const auto r = check_row(check);
-      rows.push_back({{r.quantity, r.reference, r.dem, r.error, r.tolerance, r.tolerance_reason,
-                       r.order, r.note},
+      rows.push_back({{r.quantity, r.reference, r.dem, r.error, r.tolerance, r.asserts,
+                       r.tolerance_reason, r.order, r.note},
                       r.status});
     }
     out += "### Checks\n\n" +
-           checks_table({"Quantity", "Reference", "DEM", "Error", "Tolerance", "Why this tolerance",
+           checks_table({"Quantity", "Reference", "DEM", "Error", "Tolerance", "Asserts", "Why this tolerance",
                          "Order (observed vs expected \u00b1 band)", "Note"},
                         rows);
   }
@@ -186,6 +199,21 @@ std::string study_section(const StudyReport& study) {
 std::string markdown_page(const ReportContent& content) {
   std::string out = "# " + escape(content.title) + "\n\n";
   out += key_value_table(content.header);
+  out += "## Studies\n\n";
+  {
+    std::vector<std::string> columns{"Study", "Title", "Checks passed", "Checks failed",
+                                     "Observed orders (expected)", "Wall time", "Result"};
+    out += table_head(columns);
+    for (const auto& row : overview_rows(content)) {
+      auto line = escaped({row.name, row.title, std::to_string(row.passed), std::to_string(row.failed),
+                           row.orders, row.wall_time, ""},
+                          columns.size());
+      line[0] = "[" + escape(row.name) + "](#" + row.anchor + ")";
+      line.back() = status_text(row.status);
+      out += table_line(line);
+    }
+    out += "\n";
+  }
   out += summary(content);
   for (const auto& study : content.studies) out += study_section(study);
   out +=

@@ -91,7 +91,14 @@ void render_study_plots(StudyReport& study, const std::string& stem, FigureRende
   const auto& series = array_field(result, "series");
   for (std::size_t k = 0; k < series.size(); ++k) {
     std::string why_not, note;
-    const auto plot = convergence_plot(series[k], why_not, note);
+    // The tolerance of the check this series belongs to (same name), when it bounds the abs. error.
+    std::optional<double> tolerance;
+    for (const auto& check : array_field(result, "checks"))
+      if (text_field(check, "quantity") == text_field(series[k], "name") &&
+          text_field(check, "error_kind") != "rel" &&
+          (text_field(check, "expect").empty() || text_field(check, "expect") == "within"))
+        tolerance = number_field(check, "tolerance");
+    const auto plot = convergence_plot(series[k], why_not, note, tolerance);
     auto title = text_field(series[k], "name");
     if (title.empty()) title = fmt::format("series {}", k + 1);
     study.convergence.push_back(renderer.render(

@@ -1,7 +1,11 @@
 // Counting outcomes and assembling the header of the report.
 #include "report_content.hpp"
 
+#include <fmt/format.h>
+#include <sys/utsname.h>
+
 #include <algorithm>
+#include <fstream>
 #include <set>
 
 #include "text_format.hpp"
@@ -78,6 +82,8 @@ std::vector<HeaderField> header_fields(const nlohmann::json& provenance,
                                          ? *run_dates.begin()
                                          : *run_dates.begin() + " \u2013 " + *run_dates.rbegin()});
   fields.push_back({"Studies folder", studies_dir.string()});
+  for (auto& f : machine_fields())  // the app's provenance may name the compiler already
+    if (!(f.label == "Compiler" && provenance.is_object() && provenance.contains("compiler"))) fields.push_back(f);
   if (provenance.is_object())
     for (const auto& [key, value] : provenance.items())
       if (key != "code_version" && key != "build_type" && key != "machine" && key != "date")
@@ -107,7 +113,113 @@ CheckRow check_row(const nlohmann::json& check) {
                    number_field(check, "order_band"));
   row.status = check_status(check);
   row.note = text_field(check, "note");
+  row.asserts = check_assertion(check);
   return row;
+}
+
+std::string check_assertion(const nlohmann::json& check) {
+  const auto expect = text_field(check, "expect");
+  const bool rel = text_field(check, "error_kind") == "rel";
+  const std::string err = rel ? "|DEM − reference| / |reference|" : "|DEM − reference|";
+  std::string out;
+  if (expect == "above") out = "DEM > reference + tol";
+  else if (expect == "below") out = "DEM < reference − tol";
+  else if (expect == "decreasing") out = "decreases from variant to variant, each step > tol (error = smallest step)";
+  else if (expect == "increasing") out = "increases from variant to variant, each step > tol (error = smallest step)";
+  else if (expect == "toward_reference")
+    out = std::string("moves toward the reference from variant to variant: ") + err +
+          " shrinks by > tol per step (error = smallest shrink)";
+  else out = err + " ≤ tol";
+  if (number_field(check, "expected_order")) out += "; observed order within expected ± band";
+  return out;
+}
+
+std::vector<OverviewRow> overview_rows(const ReportContent& content) {
+  std::vector<OverviewRow> rows;
+  for (const auto& study : content.studies) {
+    const auto& source = study.source;
+    OverviewRow row;
+    row.anchor = study_anchor(source);
+    row.name = study_name(source);
+    row.title = text_field(source.result, "title");
+    if (row.title.empty()) row.title = row.name;
+    row.status = study_status(source);
+    for (const auto& check : array_field(source.result, "checks")) {
+      const auto status = check_status(check);
+      row.passed += status == "PASS";
+      row.failed += status == "FAIL";
+      if (const auto order = number_field(check, "observed_order")) {
+        if (!row.orders.empty()) row.orders += ", ";
+        row.orders += format_number(*order);
+        if (const auto expected = number_field(check, "expected_order"))
+          row.orders += " (" + format_number(*expected) + ")";
+      }
+    }
+    if (const auto wall = number_field(object_field(source.result, "provenance"), "wall_time_s"))
+      row.wall_time = fmt::format("{:.1f} s", *wall);
+    else
+      row.wall_time = std::string(missing_value);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+ReadmeParts readme_parts(const nlohmann::json& result) {
+  ReadmeParts parts;
+  std::string text = text_field(result, "readme");
+  if (text.empty()) return parts;
+  // Paragraphs separated by blank lines; a leading "# title" line is dropped.
+  std::vector<std::string> paragraphs;
+  std::string current;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    const auto end = std::min(text.find('\n', pos), text.size());
+    const std::string line = text.substr(pos, end - pos);
+    pos = end + 1;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) {
+      if (!current.empty()) paragraphs.push_back(current);
+      current.clear();
+      continue;
+    }
+    if (line.rfind("# ", 0) == 0 && paragraphs.empty() && current.empty()) continue;
+    current += (current.empty() ? "" : "\n") + line;
+  }
+  if (!current.empty()) paragraphs.push_back(current);
+  if (paragraphs.empty()) return parts;
+  parts.purpose = paragraphs.front();
+  for (std::size_t k = 1; k < paragraphs.size(); ++k) parts.rest += (k > 1 ? "\n\n" : "") + paragraphs[k];
+  return parts;
+}
+
+std::vector<HeaderField> machine_fields() {
+  std::vector<HeaderField> fields;
+  struct utsname u {};
+  if (uname(&u) == 0) fields.push_back({"OS", fmt::format("{} {} {}", u.sysname, u.release, u.machine)});
+  std::ifstream os_release("/etc/os-release");
+  for (std::string line; std::getline(os_release, line);)
+    if (line.rfind("PRETTY_NAME=", 0) == 0) {
+      std::string name = line.substr(12);
+      name.erase(std::remove(name.begin(), name.end(), '"'), name.end());
+      if (!fields.empty()) fields.back().value = name + " (" + fields.back().value + ")";
+    }
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  int cores = 0;
+  std::string model;
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.rfind("processor", 0) == 0) ++cores;
+    if (model.empty() && line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
+      model = line.substr(line.find(':') + 2);
+  }
+  if (!model.empty()) fields.push_back({"CPU", fmt::format("{} ({} logical cores)", model, cores)});
+#if defined(__clang__)
+  fields.push_back({"Compiler", fmt::format("clang {}", __clang_version__)});
+#elif defined(__GNUC__)
+  fields.push_back({"Compiler", fmt::format("GCC {}.{}.{}", __GNUC__, __GNUC_MINOR__, __GNUC_PATCHLEVEL__)});
+#endif
+  fields.push_back({"Libraries", fmt::format("fmt {}.{}.{}, nlohmann_json {}.{}.{}, C++ {}", FMT_VERSION / 10000,
+                                             FMT_VERSION / 100 % 100, FMT_VERSION % 100, NLOHMANN_JSON_VERSION_MAJOR,
+                                             NLOHMANN_JSON_VERSION_MINOR, NLOHMANN_JSON_VERSION_PATCH, __cplusplus)});
+  return fields;
 }
 
 std::vector<HeaderField> setup_fields(const nlohmann::json& result) {

@@ -53,10 +53,32 @@ std::string study_anchor(const StudyResult& study);
 std::string study_name(const StudyResult& study);
 
 // Cells of one check row, formatted (shared by the HTML and Markdown writers).
+// `asserts` says in words what the check requires ("|error| ≤ tol", "DEM > reference + tol",
+// "decreases across the variants by > tol per step"), so that a direction check is not read as a
+// failed closeness check.
 struct CheckRow {
-  std::string quantity, reference, dem, error, tolerance, tolerance_reason, order, status, note;
+  std::string quantity, reference, dem, error, tolerance, tolerance_reason, order, status, note,
+      asserts;
 };
 CheckRow check_row(const nlohmann::json& check);
+std::string check_assertion(const nlohmann::json& check);
+
+// One row of the study overview (the table of contents): title, counts, orders, wall time.
+struct OverviewRow {
+  std::string anchor, name, title, status, orders, wall_time;
+  int passed = 0, failed = 0;
+};
+std::vector<OverviewRow> overview_rows(const ReportContent& content);
+
+// A study's README (carried in result.json): its first paragraph (the purpose) and the rest
+// (findings, known limits), title line dropped. Empty strings when there is none.
+struct ReadmeParts {
+  std::string purpose, rest;
+};
+ReadmeParts readme_parts(const nlohmann::json& result);
+
+// The machine the report was written on: OS, CPU model, compiler and library versions.
+std::vector<HeaderField> machine_fields();
 
 // Setup of a study as label/value pairs: kind, case, parameter, each setup entry, overrides.
 std::vector<HeaderField> setup_fields(const nlohmann::json& result);

@@ -11,7 +11,7 @@
 namespace report {
 
 std::optional<Plot> convergence_plot(const nlohmann::json& series, std::string& why_not,
-                                     std::string& note_out) {
+                                     std::string& note_out, std::optional<double> tolerance) {
   const auto h = number_array(series, "h");
   const auto error = number_array(series, "error");
   Curve errors;
@@ -38,7 +38,8 @@ std::optional<Plot> convergence_plot(const nlohmann::json& series, std::string& 
   plot.title = text_field(series, "name");
   plot.xlabel = text_field(series, "parameter");
   if (plot.xlabel.empty()) plot.xlabel = "h";
-  plot.ylabel = "error";
+  plot.ylabel = number_field(series, "reference") ? "abs. error |DEM − reference|"
+                                                  : "abs. error |DEM − Richardson|";
   plot.logx = plot.logy = true;
   plot.key_position = "top left";
   plot.curves.push_back(errors);
@@ -59,6 +60,20 @@ std::optional<Plot> convergence_plot(const nlohmann::json& series, std::string& 
     slope.y = {e_f, e_f * std::pow(coarsest_h / h_f, *order)};
     plot.curves.push_back(slope);
   }
+  if (tolerance && *tolerance > 0.0) {
+    double lo = errors.x.front(), hi = errors.x.front();
+    for (double x : errors.x) {
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+    Curve band;
+    band.label = "tolerance " + format_number(*tolerance);
+    band.style = "band";
+    band.x = {lo, hi};
+    band.y = {*tolerance, *tolerance};
+    plot.curves.push_back(band);
+  }
+  plot.key_position = "below";
   return plot;
 }
 
@@ -69,12 +84,23 @@ std::optional<Plot> figure_plot(const nlohmann::json& figure, std::string& why_n
   plot.ylabel = text_field(figure, "ylabel");
   plot.logx = bool_field(figure, "logx").value_or(false);
   plot.logy = bool_field(figure, "logy").value_or(false);
+  plot.key_position = "below";
+  for (const auto& [key, out] : {std::pair{"xrange", &plot.xrange}, std::pair{"yrange", &plot.yrange}}) {
+    const auto r = number_array(figure, key);
+    if (r.size() == 2 && r[0] && r[1] && *r[0] < *r[1]) *out = {*r[0], *r[1]};
+  }
+  for (const auto& tick : array_field(figure, "yticks"))
+    if (tick.is_array() && tick.size() == 2 && tick[0].is_number() && tick[1].is_string())
+      plot.yticks.emplace_back(tick[0].get<double>(), tick[1].get<std::string>());
   std::size_t points = 0;
   for (const auto& entry : array_field(figure, "curves")) {
     Curve curve;
     curve.label = text_field(entry, "label");
     const auto style = text_field(entry, "style");
     curve.style = style.empty() ? "lines" : style;
+    curve.colour = text_field(entry, "colour");
+    curve.point_type = static_cast<int>(number_field(entry, "point").value_or(0.0));
+    curve.point_size = number_field(entry, "size").value_or(0.0);
     const auto x = number_array(entry, "x");
     const auto y = number_array(entry, "y");
     for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) {

@@ -4,6 +4,8 @@
 set -euo pipefail
 pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtomlplusplus-dev
       libcli11-dev nlohmann-json3-dev libfmt-dev gnuplot-nox
+      # the browser check of the report (ctest -L browser, tests/browser/check_report.py)
+      chromium python3
       # sanitizers and fuzzing (scripts/sanitize.sh, scripts/fuzz.sh): clang 14, its runtime libraries
       # (ASan, UBSan, libFuzzer: libclang_rt.fuzzer-x86_64.a, only a Recommends of clang) and
       # llvm-symbolizer (package llvm) for readable stack traces

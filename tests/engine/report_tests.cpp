@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "gnuplot_plot.hpp"
 #include "report.hpp"
 
 namespace {
@@ -201,4 +202,100 @@ TEST_CASE("missing studies folder throws", "[report]") {
   options.studies_dir = tmp.path / "nothing_here";
   options.out_dir = tmp.path / "out";
   CHECK_THROWS_AS(report::write_report(options), std::runtime_error);
+}
+
+namespace {
+
+// A study with a direction check (expect = above, tolerance 0), a trend check, a README, wall time,
+// a figure with an x range and a series whose check bounds the absolute error.
+const char* direction_study = R"json({
+  "study": "small_rotation",
+  "title": "M-B small rotation",
+  "kind": "single",
+  "readme": "# small_rotation\n\nPurpose line one\ncontinued.\n\nKnown limit: Hisatake drifts.\n",
+  "provenance": { "code_version": "v1", "date": "2024-05-01T10:00:00Z", "wall_time_s": 12.34,
+                  "command": "dem2d study verification/small_rotation/study.toml --out x --jobs 2" },
+  "passed": true,
+  "checks": [
+    { "quantity": "overshoot [m]", "reference": 0.0125, "dem": 0.0125019, "error": 1.9e-6,
+      "error_kind": "abs", "tolerance": 0, "tolerance_reason": "r", "expect": "above",
+      "observed_order": null, "expected_order": null, "order_band": null, "passed": true, "note": "" },
+    { "quantity": "peak falls with N", "reference": null, "dem": 2600, "error": 60,
+      "error_kind": "abs", "tolerance": 0, "tolerance_reason": "r", "expect": "decreasing",
+      "observed_order": null, "expected_order": null, "order_band": null, "passed": true, "note": "values: ..." },
+    { "quantity": "e (K18)", "reference": 0.37, "dem": 0.3701, "error": 1e-4,
+      "error_kind": "abs", "tolerance": 2e-3, "tolerance_reason": "r", "expect": "within",
+      "observed_order": 1.02, "expected_order": 1.0, "order_band": 0.2, "passed": true, "note": "" }
+  ],
+  "series": [
+    { "name": "e (K18)", "parameter": "dt [s]", "h": [1e-5, 5e-6, 2.5e-6],
+      "value": [0.36, 0.366, 0.369], "reference": 0.37, "error": [1e-2, 4e-3, 1e-3],
+      "observed_order": [null, 1.3, 2.0], "fitted_order": 1.02, "expected_order": 1.0 }
+  ],
+  "figures": [
+    { "id": "tangential", "title": "first ms", "xlabel": "t [ms]", "ylabel": "x [um]", "xrange": [0, 1],
+      "curves": [ { "label": "exact", "x": [0, 0.5, 1, 20], "y": [1, 2, 3, 4], "style": "lines" },
+                  { "label": "linearised", "x": [0, 0.5, 1, 20], "y": [1, 2, 3, 4], "style": "lines" },
+                  { "label": "reference", "x": [0, 1], "y": [0, 0], "style": "reference" } ] }
+  ]
+})json";
+
+}  // namespace
+
+TEST_CASE("check directions are stated in words, overview and README are shown", "[report]") {
+  TempDir tmp;
+  write(tmp.path / "studies" / "small_rotation" / "result.json", direction_study);
+  report::Options options;
+  options.studies_dir = tmp.path / "studies";
+  options.out_dir = tmp.path / "report";
+  const auto written = report::write_report(options);
+  const auto html = read(written.html), md = read(written.markdown);
+  for (const auto* page : {&html, &md}) {
+    CHECK(std::regex_search(*page, std::regex("DEM (&gt;|\\\\>|>) reference \\+ tol")));
+    CHECK(page->find("decreases from variant to variant") != std::string::npos);
+    CHECK(page->find("≤ tol") != std::string::npos);
+    CHECK(page->find("Purpose line one") != std::string::npos);
+    CHECK(page->find("Known limit: Hisatake drifts.") != std::string::npos);
+    CHECK(page->find("12.3 s") != std::string::npos);  // wall time in the overview
+    CHECK(page->find("dem2d study verification/small_rotation/study.toml") != std::string::npos);
+    CHECK(page->find("Observed orders") != std::string::npos);
+    CHECK(page->find("1.02 (1)") != std::string::npos);
+  }
+  CHECK(html.find("id=\"contents\"") != std::string::npos);
+  CHECK(html.find("href=\"#study-small_rotation\"") != std::string::npos);
+  CHECK(html.find(">CPU<") + html.find(">OS<") != 2 * std::string::npos);
+}
+
+TEST_CASE("declared x range, distinct curve styles, key below and the tolerance line reach gnuplot", "[report]") {
+  TempDir tmp;
+  write(tmp.path / "studies" / "small_rotation" / "result.json", direction_study);
+  report::Options options;
+  options.studies_dir = tmp.path / "studies";
+  options.out_dir = tmp.path / "report";
+  report::write_report(options);
+  std::string figure, convergence;
+  for (const auto& entry : fs::directory_iterator(options.out_dir / "figures")) {
+    if (entry.path().extension() != ".gp") continue;
+    (entry.path().string().find("convergence") != std::string::npos ? convergence : figure) = read(entry.path());
+  }
+  REQUIRE(!figure.empty());
+  REQUIRE(!convergence.empty());
+  CHECK(figure.find("set xrange [0:1]") != std::string::npos);
+  CHECK(figure.find("set key below") != std::string::npos);
+  CHECK(figure.find("with lines dt 1") != std::string::npos);  // first curve solid
+  CHECK(figure.find("with lines dt 2 lw 2.4") != std::string::npos);  // second dashed, thinner
+  CHECK(figure.find("lc rgb '#000000'") != std::string::npos);  // the reference in black
+  CHECK(convergence.find("title 'tolerance 0.002'") != std::string::npos);
+  CHECK(convergence.find("abs. error") != std::string::npos);
+}
+
+TEST_CASE("a narrow linear range gets enough tick digits that neighbours differ", "[report]") {
+  report::Plot plot;
+  report::Curve c;
+  c.x = {0, 1, 2};
+  c.y = {12500000.0, 12500000.5, 12500001.0};  // e0.y in nm: offset 1.25e7, span 1
+  plot.curves.push_back(c);
+  const auto script = report::gnuplot_script(plot, "x.svg");
+  CHECK(script.find("set format y '%.11g'") != std::string::npos);
+  CHECK(script.find("set format x") == std::string::npos);
 }

@@ -148,3 +148,74 @@ TEST_CASE("One broken result.json does not stop the others from being read", "[s
   CHECK(report::study_status(studies[3]) == "UNREADABLE");
   CHECK_THAT(studies[3].read_error, Contains("interrupted or is still running"));
 }
+
+namespace {
+
+/// rest_on_wall with a trend check over its two variants (K18 → K19, equal to round-off), a table
+/// of probes across variants and a probe figure (x = the variant argument n).
+fs::path trend_study(const std::string& folder, const std::string& trend, const std::string& tolerance) {
+  const std::string extra = "\n[[check]]\nprobe = \"overlap\"\nlabel = \"trend\"\ntrend = \"" + trend +
+                            "\"\ntolerance = " + tolerance + "\nreason = \"test\"\n"
+                            "\n[[table]]\ntitle = \"cost\"\nprobes = [\"element_steps_per_second\", \"overlap\"]\n"
+                            "\n[[figure]]\nid = \"p\"\nprobe = \"overlap\"\nx_arg = \"n\"\n"
+                            "reference = \"rest.overlap\"\nreference_scale = -1.0\nargs = { m = 1.0, g = 9.80665, K = 1e6 }\n";
+  const fs::path f = study_copy(folder, "set = [\"numerics.integrator=K19\"]",
+                                "set = [\"numerics.integrator=K19\"]\nargs = { n = 2 }");
+  std::string text;
+  {
+    std::ifstream in(f);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    text = ss.str();
+  }
+  const std::string k18 = "set = [\"numerics.integrator=K18\"]";
+  text.replace(text.find(k18), k18.size(), k18 + "\nargs = { n = 1 }");
+  std::ofstream(f) << text + extra;
+  return f;
+}
+
+const nlohmann::json* check_named(const nlohmann::json& result, const std::string& name) {
+  for (const auto& c : result["checks"])
+    if (c["quantity"] == name) return &c;
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("A trend check passes only when every step moves the asserted way by more than the tolerance", "[study]") {
+  // K18 and K19 settle to the same overlap (to round-off): no step exceeds +1e-9, every step exceeds −1e-9.
+  const auto strict = ver::run_study(trend_study("trend_strict", "decreasing", "1e-9"), quiet(fresh_dir("trend_strict_out")));
+  const auto* c = check_named(strict.json, "trend");
+  REQUIRE(c);
+  CHECK((*c)["expect"] == "decreasing");
+  CHECK_FALSE((*c)["passed"].get<bool>());
+  CHECK_FALSE(strict.passed);
+  CHECK(std::abs((*c)["error"].get<double>()) < 1e-15);
+  CHECK((*c)["note"].get<std::string>().find("K18: ") != std::string::npos);
+
+  const auto loose = ver::run_study(trend_study("trend_loose", "increasing", "-1e-9"), quiet(fresh_dir("trend_loose_out")));
+  CHECK((*check_named(loose.json, "trend"))["passed"].get<bool>());
+  CHECK(loose.passed);
+  // The declared table: one row per variant, the cost and the probe.
+  REQUIRE(loose.json["tables"].size() == 1);
+  const auto& table = loose.json["tables"][0];
+  CHECK(table["columns"] == nlohmann::json({"variant", "element_steps_per_second", "overlap"}));
+  REQUIRE(table["rows"].size() == 2);
+  CHECK(table["rows"][1][0] == "K19");
+  // The probe figure: x = n, the DEM points and the reference at each variant (−x_eq = −mg/K).
+  const auto& fig = loose.json["figures"][0];
+  REQUIRE(fig["curves"].size() == 2);
+  CHECK(fig["curves"][0]["x"] == nlohmann::json({1.0, 2.0}));
+  CHECK(fig["curves"][1]["style"] == "reference");
+  CHECK(fig["curves"][1]["y"][0].get<double>() == Approx(-9.80665e-6).epsilon(1e-12));
+  CHECK(fig["curves"][0]["y"][1].get<double>() == Approx(-9.80665e-6).epsilon(1e-9));
+}
+
+TEST_CASE("Bad trend and figure declarations get a located error", "[study]") {
+  const fs::path out = fresh_dir("trend_bad_out");
+  CHECK_THROWS_WITH(ver::run_study(trend_study("trend_bad", "sideways", "0"), quiet(out)),
+                    Contains("check.trend") && Contains("decreasing, increasing or toward_reference"));
+  const fs::path g = study_copy("range_bad", {}, {}, "");
+  std::ofstream(g, std::ios::app) << "\n[[figure]]\ny = \"t\"\nx_range = [1.0, 0.0]\n";
+  CHECK_THROWS_WITH(ver::run_study(g, quiet(out)), Contains("figure.x_range") && Contains("lo < hi"));
+}

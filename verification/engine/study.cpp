@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -31,6 +32,7 @@ namespace {
 
 enum class Kind { refinement, single, stability, mode_map };
 enum class Expect { within, above, below };
+enum class Trend { none, decreasing, increasing, toward_reference };
 
 struct Variant {
   std::string label;
@@ -53,6 +55,7 @@ struct Check {
   Expect expect = Expect::within;
   bool compare_richardson = false;  // refinement: analyse without the reference, then compare the
                                     // Richardson extrapolation (not the finest level) with it
+  Trend trend = Trend::none;        // a trend across the listed variants (in their order), no pinned value
 };
 
 /// A figure from the time series of runs (the finest level of each listed variant), with an
@@ -65,6 +68,23 @@ struct Figure {
   std::vector<std::string> variants;
   std::map<std::string, double> args;
   bool logx = false, logy = false;
+  double y_offset = 0.0;            // plot (y − y_offset) × y_scale
+  bool y_minus_reference = false;   // plot y − reference at the same x (needs reference)
+  std::vector<double> x_range, y_range;  // [lo, hi] in plotted units; empty: automatic
+  // A figure of probe values across variants: x = the variant argument x_arg, y = the probe, one
+  // curve per distinct value of group_arg (or one curve), plus the reference solver if given.
+  std::string probe, group_arg, group_label;
+  std::int64_t reference_points = 0;
+  bool reference_per_variant = false;  // series figure: one reference curve per variant (its own args)  // > 1: the reference on a uniform grid of x_arg over the group's span
+  std::map<std::string, std::string> curve_labels;  // legend words per series quantity / solver
+};
+
+/// A table of probe values across variants: rows = variants (columns = the probes), or a pivot with
+/// rows = distinct values of row_arg and columns = distinct values of column_arg (one probe).
+struct TableDecl {
+  std::string title, row_arg, column_arg, row_label, column_label;
+  std::vector<std::string> probes, variants;
+  double scale = 1.0;
 };
 
 struct Study {
@@ -78,6 +98,7 @@ struct Study {
   double low = 0.0, high = 0.0, rel_tol = 1e-4;  // stability bisection
   std::vector<Check> checks;
   std::vector<Figure> figures;
+  std::vector<TableDecl> tables;
   nlohmann::json setup = nlohmann::json::object();
   // mode_map: block shapes (columns, rows) × friction angles × slope angles
   std::vector<std::pair<int, int>> blocks;
@@ -249,7 +270,16 @@ Study read_study(const fs::path& file) {
     c.label = (*t)["label"].value_or(c.probe);
     c.solver = (*t)["reference"].value_or(std::string());
     if (const toml::node* v = t->get("value")) c.value = number_or_quantity(s, *v, "check.value");
-    if (c.solver.empty() && !c.value && s.kind != Kind::refinement)
+    const std::string trend = (*t)["trend"].value_or(std::string());
+    if (!trend.empty()) {
+      if (trend == "decreasing") c.trend = Trend::decreasing;
+      else if (trend == "increasing") c.trend = Trend::increasing;
+      else if (trend == "toward_reference") c.trend = Trend::toward_reference;
+      else fail_at(s, n, "check.trend", fmt::format("expected decreasing, increasing or toward_reference, got \"{}\"", trend));
+      if (s.kind != Kind::single && s.kind != Kind::refinement)
+        fail_at(s, n, "check.trend", "a trend check needs kind = \"single\" or \"refinement\"");
+    }
+    if (c.solver.empty() && !c.value && s.kind != Kind::refinement && (c.trend == Trend::none || c.trend == Trend::toward_reference))
       fail(s, "check.reference", fmt::format("check \"{}\": give a reference solver or a value", c.label));
     c.args = args_of(s, *t, "args");
     if (const toml::node* o = t->get("reference_offset")) c.offset = number_or_quantity(s, *o, "check.reference_offset");
@@ -284,7 +314,7 @@ Study read_study(const fs::path& file) {
       f.title = (*t)["title"].value_or(f.id);
       f.x = (*t)["x"].value_or(std::string("t"));
       f.y = (*t)["y"].value_or(std::string());
-      if (f.y.empty()) fail(s, "figure.y", "missing: the series quantity to plot");
+      if (f.y.empty() && !t->get("probe")) fail_at(s, n, "figure.y", "missing: the series quantity to plot (or probe = a probe across variants)");
       f.xlabel = (*t)["xlabel"].value_or(f.x);
       f.ylabel = (*t)["ylabel"].value_or(f.y);
       f.x_scale = (*t)["x_scale"].value_or(1.0);
@@ -298,7 +328,51 @@ Study read_study(const fs::path& file) {
       f.variants = strings(s, *t, "variants");
       f.logx = (*t)["logx"].value_or(false);
       f.logy = (*t)["logy"].value_or(false);
+      f.y_offset = (*t)["y_offset"].value_or(0.0);
+      f.y_minus_reference = (*t)["y_minus_reference"].value_or(false);
+      if (f.y_minus_reference && f.solver.empty()) fail_at(s, n, "figure.y_minus_reference", "needs a reference solver");
+      f.probe = (*t)["probe"].value_or(std::string());
+      f.group_arg = (*t)["group_arg"].value_or(std::string());
+      f.group_label = (*t)["group_label"].value_or(f.group_arg);
+      f.reference_points = (*t)["reference_points"].value_or(int64_t{0});
+      f.reference_per_variant = (*t)["reference_per_variant"].value_or(false);
+      if (!f.probe.empty() && f.x_arg == "t") fail_at(s, n, "figure.x_arg", "a probe figure needs x_arg: the variant argument on x");
+      for (const char* key : {"x_range", "y_range"}) {
+        if (const toml::node* r = t->get(key)) {
+          const toml::array* a = r->as_array();
+          if (!a || a->size() != 2) fail_at(s, *r, fmt::format("figure.{}", key), "expected [lo, hi]");
+          std::vector<double>& out = std::string(key) == "x_range" ? f.x_range : f.y_range;
+          for (const auto& x : *a) out.push_back(number_or_quantity(s, x, fmt::format("figure.{}", key)));
+          if (!(out[0] < out[1])) fail_at(s, *r, fmt::format("figure.{}", key), "expected lo < hi");
+        }
+      }
+      if (const toml::table* cl = (*t)["labels"].as_table())
+        for (const auto& [k, v] : *cl) f.curve_labels[std::string(k.str())] = v.value_or(std::string(k.str()));
       s.figures.push_back(f);
+    }
+  }
+  if (root.get("table") && !root["table"].as_array())
+    fail_at(s, *root.get("table"), "table", "expected [[table]] tables");
+  if (const toml::array* ta = root["table"].as_array()) {
+    if (s.kind == Kind::mode_map) fail(s, "table", "declared tables need kind = single, refinement or stability");
+    for (const auto& n : *ta) {
+      const toml::table* t = n.as_table();
+      if (!t) fail_at(s, n, "table", "expected [[table]] tables");
+      TableDecl d;
+      d.title = (*t)["title"].value_or(std::string());
+      d.probes = strings(s, *t, "probes");
+      if (auto p = (*t)["probe"].value<std::string>()) d.probes.insert(d.probes.begin(), *p);
+      if (d.probes.empty()) fail_at(s, n, "table.probe", "missing: the probe(s) to tabulate (or element_steps_per_second)");
+      d.row_arg = (*t)["row_arg"].value_or(std::string());
+      d.column_arg = (*t)["column_arg"].value_or(std::string());
+      d.row_label = (*t)["row_label"].value_or(d.row_arg);
+      d.column_label = (*t)["column_label"].value_or(d.column_arg);
+      if (d.row_arg.empty() != d.column_arg.empty()) fail_at(s, n, "table", "give both row_arg and column_arg (a pivot) or neither");
+      if (!d.row_arg.empty() && d.probes.size() != 1) fail_at(s, n, "table.probe", "a pivot table shows one probe");
+      d.scale = (*t)["scale"].value_or(1.0);
+      d.variants = strings(s, *t, "variants");
+      if (d.title.empty()) d.title = d.probes.front();
+      s.tables.push_back(d);
     }
   }
   return s;
@@ -409,6 +483,7 @@ void parallel_for(std::size_t n, int jobs, F&& f) {
 }  // namespace
 
 StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
+  const auto started = std::chrono::steady_clock::now();
   const Study s = read_study(file);
   const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
   fs::create_directories(out);
@@ -477,7 +552,13 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
 
   double speed_sum = 0.0;
   std::size_t speed_n = 0;
+  std::vector<RunOut> finest_runs;  // single / refinement: the finest run of each variant
+  auto probe_of = [](const RunOut& r, const std::string& probe) -> std::optional<double> {
+    if (probe == "element_steps_per_second") return r.eps > 0.0 ? std::optional<double>(r.eps) : std::nullopt;
+    return r.probes.count(probe) ? r.probes.at(probe) : std::nullopt;
+  };
   nlohmann::json s_tables = nlohmann::json::array(), s_setup_extra = nlohmann::json::object();
+  nlohmann::json mode_chart;  // mode_map: the coloured chart (first figure)
   if (s.kind == Kind::single || s.kind == Kind::refinement) {
     const std::size_t nl = s.kind == Kind::single ? 1 : s.values.size();
     std::vector<RunOut> runs(s.variants.size() * nl);
@@ -495,7 +576,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
         std::vector<std::string> q;
         std::int64_t every = 0;
         for (const Figure& f : s.figures)
-          if (f.variants.empty() || std::find(f.variants.begin(), f.variants.end(), v.label) != f.variants.end()) {
+          if (f.probe.empty() && (f.variants.empty() || std::find(f.variants.begin(), f.variants.end(), v.label) != f.variants.end())) {
             q.push_back(f.x);
             q.push_back(f.y);
             every = every ? std::min(every, f.every) : f.every;
@@ -526,7 +607,55 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       csv << "\n";
     }
     dem::write_file_atomic(out / "levels.csv", csv.str(), false);
+    for (std::size_t vi = 0; vi < s.variants.size(); ++vi) finest_runs.push_back(runs[vi * nl + nl - 1]);
     for (const Check& c : s.checks) {
+      if (c.trend != Trend::none) {
+        // A trend across the variants, in their order: every step moves the asserted way by more
+        // than the tolerance. The error column holds the smallest step (negative: a wrong step).
+        std::vector<std::string> shown;
+        std::optional<double> smallest, last, last_ref;
+        bool complete = true;
+        std::optional<double> prev_value, prev_dist;
+        for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
+          const Variant& v = s.variants[vi];
+          if (!applies(c, v)) continue;
+          if (!finest_runs[vi].probes.count(c.probe)) fail(s, "check.probe", fmt::format("the case has no probe \"{}\"", c.probe));
+          const std::optional<double> x = finest_runs[vi].probes.at(c.probe);
+          shown.push_back(fmt::format("{}: {}", v.label, fmt_value(x)));
+          if (!x) {
+            complete = false;
+            continue;
+          }
+          std::optional<double> dist;
+          if (c.trend == Trend::toward_reference) {
+            last_ref = reference_of(c, v, s.kind == Kind::refinement ? s.values.back() : 0.0);
+            if (!last_ref) fail(s, "check.reference", fmt::format("check \"{}\": toward_reference needs a reference", c.label));
+            dist = std::abs(*x - *last_ref);
+            if (c.relative) *dist /= std::abs(*last_ref);
+          }
+          if (prev_value) {
+            const double step = c.trend == Trend::decreasing ? *prev_value - *x
+                                : c.trend == Trend::increasing ? *x - *prev_value
+                                                               : *prev_dist - *dist;
+            smallest = smallest ? std::min(*smallest, step) : step;
+          }
+          prev_value = x;
+          prev_dist = dist;
+          last = x;
+        }
+        std::string values;
+        for (const auto& t : shown) values += (values.empty() ? "" : " → ") + t;
+        const bool ok = complete && smallest && *smallest > c.tolerance;
+        passed = passed && ok;
+        auto j = [](std::optional<double> x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); };
+        const char* word = c.trend == Trend::decreasing ? "decreasing" : c.trend == Trend::increasing ? "increasing" : "toward_reference";
+        checks.push_back({{"quantity", c.label}, {"reference", j(last_ref)}, {"dem", j(last)}, {"error", j(smallest)},
+                          {"error_kind", c.relative ? "rel" : "abs"}, {"tolerance", c.tolerance},
+                          {"tolerance_reason", c.reason}, {"observed_order", nullptr}, {"expected_order", nullptr},
+                          {"order_band", nullptr}, {"expect", word}, {"passed", ok},
+                          {"note", (complete ? "" : "a variant gave no value; ") + std::string("values: ") + values}});
+        continue;
+      }
       for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
         const Variant& v = s.variants[vi];
         if (!applies(c, v)) continue;
@@ -653,6 +782,50 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
                               s.margin * 180.0 / std::numbers::pi));
       }
     map << "(. stable, S slide, T topple, X slide + topple; ~ within the margin of a mode boundary, not checked; ! disagrees)\n";
+    {  // the same map as a coloured chart: rows = block and φ, x = α; ring = Sagaseta, dot = DEM
+      const char* names[] = {"stable", "slide", "topple", "slide + topple"};
+      const char* colours[] = {"#2ca02c", "#1f77b4", "#d62728", "#9467bd"};
+      nlohmann::json curves = nlohmann::json::array(), yticks = nlohmann::json::array();
+      std::vector<std::vector<double>> rx(4), ry(4), dx(4), dy(4);
+      std::vector<double> ex, ey, fx, fy;
+      for (const Point& p : pts) {
+        const double row = static_cast<double>(p.block * s.phis.size() + p.phi);
+        const double a = s.alphas[p.alpha] * 180.0 / std::numbers::pi;
+        rx[p.ref].push_back(a);
+        ry[p.ref].push_back(row);
+        if (p.dem >= 0) {
+          dx[p.dem].push_back(a);
+          dy[p.dem].push_back(row);
+        } else {
+          fx.push_back(a);
+          fy.push_back(row);
+        }
+        if (p.near_boundary) {
+          ex.push_back(a);
+          ey.push_back(row);
+        }
+      }
+      for (int m = 0; m < 4; ++m)
+        curves.push_back({{"label", fmt::format("Sagaseta: {}", names[m])}, {"x", rx[m]}, {"y", ry[m]},
+                          {"style", "points"}, {"colour", colours[m]}, {"point", 6}, {"size", 1.5}});
+      for (int m = 0; m < 4; ++m)
+        curves.push_back({{"label", fmt::format("DEM: {}", names[m])}, {"x", dx[m]}, {"y", dy[m]},
+                          {"style", "points"}, {"colour", colours[m]}, {"point", 7}, {"size", 0.75}});
+      curves.push_back({{"label", "near a boundary: not checked"}, {"x", ex}, {"y", ey}, {"style", "points"},
+                        {"colour", "#000000"}, {"point", 2}, {"size", 1.2}});
+      curves.push_back({{"label", "DEM run failed"}, {"x", fx}, {"y", fy}, {"style", "points"},
+                        {"colour", "#000000"}, {"point", 3}, {"size", 1.8}});
+      for (std::size_t b = 0; b < s.blocks.size(); ++b)
+        for (std::size_t f = 0; f < s.phis.size(); ++f)
+          yticks.push_back({static_cast<double>(b * s.phis.size() + f),
+                            fmt::format("{}×{}, φ={:.0f}°", s.blocks[b].first, s.blocks[b].second,
+                                        s.phis[f] * 180.0 / std::numbers::pi)});
+      const double rows_n = static_cast<double>(s.blocks.size() * s.phis.size());
+      mode_chart = {{"id", "mode_map"}, {"title", "Mode map: Sagaseta (ring) against the DEM (dot), same colour = agreement"},
+                    {"xlabel", "slope angle α [deg]"}, {"ylabel", "block (columns × rows) and friction angle φ"},
+                    {"logx", false}, {"logy", false}, {"curves", curves}, {"yticks", yticks},
+                    {"yrange", {-0.7, rows_n - 0.3}}};
+    }
     s_tables.push_back({{"title", "Mode map: Sagaseta (ref) against the DEM"}, {"preformatted", map.str()}});
     s_tables.push_back({{"title", "Agreement per block and friction angle"},
                         {"columns", {"block", "phi [deg]", "agree / checked", "excluded (near a boundary)"}},
@@ -689,6 +862,11 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       }
       limits[vi] = 0.5 * (lo + hi);
     });
+    for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {  // probe "limit" for figures and tables
+      RunOut r;
+      r.probes["limit"] = limits[vi];
+      finest_runs.push_back(r);
+    }
     for (const Check& c : s.checks)
       for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
         if (!applies(c, s.variants[vi])) continue;
@@ -696,56 +874,199 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       }
   }
 
+  // A registry solver with only the arguments it takes (variant arguments may serve several solvers).
+  auto evaluate = [](const std::string& solver, const std::map<std::string, double>& args) {
+    std::map<std::string, double> use;
+    for (const auto& info : ref::solvers())
+      if (info.name == solver)
+        for (const auto& a : info.arguments)
+          if (args.count(a.name)) use[a.name] = args.at(a.name);
+    return ref::evaluate(solver, use);
+  };
+  auto words = [](const Figure& f, const std::string& key, const std::string& fallback) {
+    const auto it = f.curve_labels.find(key);
+    return it == f.curve_labels.end() ? fallback : it->second;
+  };
+  auto listed = [](const std::vector<std::string>& only, const std::string& label) {
+    return only.empty() || std::find(only.begin(), only.end(), label) != only.end();
+  };
   nlohmann::json figures = nlohmann::json::array();
+  if (!mode_chart.is_null()) figures.push_back(mode_chart);
   for (const Figure& f : s.figures) {
     nlohmann::json curves = nlohmann::json::array();
-    std::vector<double> ref_x;
-    for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
-      const Variant& v = s.variants[vi];
-      if (!f.variants.empty() && std::find(f.variants.begin(), f.variants.end(), v.label) == f.variants.end()) continue;
-      const fs::path csv = out / "runs" / fmt::format("variant{}", vi) / "series.csv";
-      std::ifstream in(csv);
-      std::string line;
-      std::vector<std::string> header;
-      std::vector<double> xs, ys;
-      while (std::getline(in, line)) {
-        if (line.empty() || line[0] == '#') continue;
-        const std::vector<std::string> cells = dem::split_csv(line);
-        if (header.empty()) {
-          header = cells;
-          continue;
+    if (!f.probe.empty()) {
+      // Probe values across variants against a variant argument, one curve per group.
+      std::vector<double> groups;
+      for (std::size_t vi = 0; vi < s.variants.size() && vi < finest_runs.size(); ++vi) {
+        const Variant& v = s.variants[vi];
+        if (!listed(f.variants, v.label)) continue;
+        const double g = v.args.count(f.group_arg) ? v.args.at(f.group_arg) : 0.0;
+        if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
+      }
+      for (double g : groups) {
+        std::vector<double> px, py, rx, ry;
+        std::map<std::string, double> ref_args;
+        for (std::size_t vi = 0; vi < s.variants.size() && vi < finest_runs.size(); ++vi) {
+          const Variant& v = s.variants[vi];
+          if (!listed(f.variants, v.label) || !v.args.count(f.x_arg)) continue;
+          if ((v.args.count(f.group_arg) ? v.args.at(f.group_arg) : 0.0) != g) continue;
+          const std::optional<double> y = probe_of(finest_runs[vi], f.probe);
+          px.push_back(v.args.at(f.x_arg) * f.x_scale);
+          py.push_back(y ? (*y - f.y_offset) * f.y_scale : std::nan(""));
+          if (!f.solver.empty()) {
+            std::map<std::string, double> args = v.args;
+            for (const auto& [k, x] : f.args) args[k] = x;
+            if (ref_args.empty()) ref_args = args;
+            rx.push_back(px.back());
+            ry.push_back(evaluate(f.solver, args) * f.ref_scale * f.y_scale);
+          }
         }
-        auto col = [&](const std::string& name) {
-          for (std::size_t k = 0; k < header.size(); ++k)
-            if (header[k] == name) return std::stod(cells[k]);
-          return std::nan("");
-        };
-        xs.push_back(col(f.x));
-        ys.push_back(col(f.y));
+        if (f.reference_points > 1 && !rx.empty()) {  // a smooth curve over the group's span of x_arg
+          const auto [lo, hi] = std::minmax_element(rx.begin(), rx.end());
+          const double a = *lo / f.x_scale, b = *hi / f.x_scale;
+          rx.clear();
+          ry.clear();
+          for (std::int64_t k = 0; k < f.reference_points; ++k) {
+            std::map<std::string, double> args = ref_args;
+            args[f.x_arg] = a + (b - a) * static_cast<double>(k) / static_cast<double>(f.reference_points - 1);
+            rx.push_back(args[f.x_arg] * f.x_scale);
+            ry.push_back(evaluate(f.solver, args) * f.ref_scale * f.y_scale);
+          }
+        }
+        const std::string gname = f.group_arg.empty() ? "DEM" : fmt::format("{} = {:g}", f.group_label, g);
+        const std::string gkey = f.group_arg.empty() ? "DEM" : fmt::format("{:g}", g);
+        // Against a smooth reference curve the DEM values are points (no line between them to mislead).
+        curves.push_back({{"label", words(f, gkey, gname)}, {"x", px}, {"y", py},
+                          {"style", f.reference_points > 1 ? "points" : "linespoints"}});
+        if (!rx.empty())
+          curves.push_back({{"label", words(f, f.solver, "reference") + (f.group_arg.empty() ? "" : ", " + gname)},
+                            {"x", rx}, {"y", ry}, {"style", "reference"}});
       }
-      if (xs.empty()) continue;
-      const double y0 = ys.front();
-      std::vector<double> px, py;
-      for (std::size_t k = 0; k < xs.size(); ++k) {
-        px.push_back(xs[k] * f.x_scale);
-        py.push_back(((f.y_from_start ? ys[k] - y0 : ys[k])) * f.y_scale);
+    } else {
+      std::vector<double> ref_x;
+      std::map<std::string, double> ref_args = f.args;
+      for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
+        const Variant& v = s.variants[vi];
+        if (!listed(f.variants, v.label)) continue;
+        const fs::path csv = out / "runs" / fmt::format("variant{}", vi) / "series.csv";
+        std::ifstream in(csv);
+        std::string line;
+        std::vector<std::string> header;
+        std::vector<double> xs, ys;
+        while (std::getline(in, line)) {
+          if (line.empty() || line[0] == '#') continue;
+          const std::vector<std::string> cells = dem::split_csv(line);
+          if (header.empty()) {
+            header = cells;
+            continue;
+          }
+          auto col = [&](const std::string& name) {
+            for (std::size_t k = 0; k < header.size(); ++k)
+              if (header[k] == name) return std::stod(cells[k]);
+            return std::nan("");
+          };
+          xs.push_back(col(f.x));
+          ys.push_back(col(f.y));
+        }
+        if (xs.empty()) continue;
+        std::map<std::string, double> vargs = v.args;
+        for (const auto& [k, x] : f.args) vargs[k] = x;
+        const double y0 = ys.front();
+        std::vector<double> px, py;
+        for (std::size_t k = 0; k < xs.size(); ++k) {
+          double y = f.y_from_start ? ys[k] - y0 : ys[k] - f.y_offset;
+          if (f.y_minus_reference) {
+            std::map<std::string, double> a = vargs;
+            a[f.x_arg] = xs[k];
+            y -= evaluate(f.solver, a) * f.ref_scale;
+          }
+          px.push_back(xs[k] * f.x_scale);
+          py.push_back(y * f.y_scale);
+        }
+        if (ref_x.empty()) {
+          ref_x = xs;
+          ref_args = vargs;
+        }
+        const std::string name = v.label.empty() ? std::string("DEM") : "DEM " + v.label;
+        curves.push_back({{"label", words(f, v.label, name)}, {"x", px}, {"y", py}, {"style", "lines"}});
+        if (f.reference_per_variant && !f.solver.empty() && !f.y_minus_reference) {
+          std::vector<double> rx, ry, grid = xs;
+          if (f.reference_points > 1 && !xs.empty()) {  // a uniform grid over the variant's span (a costly solver)
+            const auto [lo, hi] = std::minmax_element(xs.begin(), xs.end());
+            grid.clear();
+            for (std::int64_t k = 0; k < f.reference_points; ++k)
+              grid.push_back(*lo + (*hi - *lo) * static_cast<double>(k) / static_cast<double>(f.reference_points - 1));
+          }
+          for (double x : grid) {
+            std::map<std::string, double> a = vargs;
+            a[f.x_arg] = x;
+            rx.push_back(x * f.x_scale);
+            ry.push_back(evaluate(f.solver, a) * f.ref_scale * f.y_scale);
+          }
+          curves.push_back({{"label", words(f, f.solver, "reference") + ", " + v.label}, {"x", rx}, {"y", ry},
+                            {"style", "reference"}});
+        }
       }
-      if (ref_x.empty()) ref_x = xs;
-      curves.push_back({{"label", v.label.empty() ? std::string("DEM") : "DEM " + v.label}, {"x", px}, {"y", py},
-                        {"style", "lines"}});
+      if (f.reference_per_variant) ref_x.clear();
+      if (!f.solver.empty() && !ref_x.empty() && !f.y_minus_reference) {
+        std::vector<double> px, py;
+        for (double x : ref_x) {
+          std::map<std::string, double> a = ref_args;
+          a[f.x_arg] = x;
+          px.push_back(x * f.x_scale);
+          py.push_back(evaluate(f.solver, a) * f.ref_scale * f.y_scale);
+        }
+        curves.push_back({{"label", words(f, f.solver, "reference: " + f.solver)}, {"x", px}, {"y", py}, {"style", "reference"}});
+      }
     }
-    if (!f.solver.empty() && !ref_x.empty()) {
-      std::vector<double> px, py;
-      for (double x : ref_x) {
-        std::map<std::string, double> args = f.args;
-        args[f.x_arg] = x;
-        px.push_back(x * f.x_scale);
-        py.push_back(ref::evaluate(f.solver, args) * f.ref_scale * f.y_scale);
+    nlohmann::json fig = {{"id", f.id}, {"title", f.title}, {"xlabel", f.xlabel}, {"ylabel", f.ylabel},
+                          {"logx", f.logx}, {"logy", f.logy}, {"curves", curves}};
+    if (!f.x_range.empty()) fig["xrange"] = f.x_range;
+    if (!f.y_range.empty()) fig["yrange"] = f.y_range;
+    figures.push_back(fig);
+  }
+  for (const TableDecl& d : s.tables) {
+    nlohmann::json rows = nlohmann::json::array(), columns = nlohmann::json::array();
+    auto cell = [&](std::size_t vi, const std::string& probe) -> nlohmann::json {
+      const auto x = probe_of(finest_runs[vi], probe);
+      return x ? nlohmann::json(fmt::format("{:.4g}", *x * d.scale)) : nlohmann::json("—");
+    };
+    if (d.row_arg.empty()) {
+      columns.push_back("variant");
+      for (const auto& p : d.probes) columns.push_back(p);
+      for (std::size_t vi = 0; vi < finest_runs.size(); ++vi) {
+        if (!listed(d.variants, s.variants[vi].label)) continue;
+        nlohmann::json row = {s.variants[vi].label};
+        for (const auto& p : d.probes) row.push_back(cell(vi, p));
+        rows.push_back(row);
       }
-      curves.push_back({{"label", "reference: " + f.solver}, {"x", px}, {"y", py}, {"style", "points"}});
+    } else {
+      std::vector<double> rv, cv;
+      for (std::size_t vi = 0; vi < finest_runs.size(); ++vi) {
+        const Variant& v = s.variants[vi];
+        if (!listed(d.variants, v.label) || !v.args.count(d.row_arg) || !v.args.count(d.column_arg)) continue;
+        if (std::find(rv.begin(), rv.end(), v.args.at(d.row_arg)) == rv.end()) rv.push_back(v.args.at(d.row_arg));
+        if (std::find(cv.begin(), cv.end(), v.args.at(d.column_arg)) == cv.end()) cv.push_back(v.args.at(d.column_arg));
+      }
+      std::sort(cv.begin(), cv.end());
+      columns.push_back(fmt::format("{} \\ {}", d.row_label, d.column_label));
+      for (double c : cv) columns.push_back(fmt::format("{} = {:g}", d.column_label, c));
+      for (double r : rv) {
+        nlohmann::json row = {fmt::format("{} = {:g}", d.row_label, r)};
+        for (double c : cv) {
+          nlohmann::json value = "";
+          for (std::size_t vi = 0; vi < finest_runs.size(); ++vi) {
+            const Variant& v = s.variants[vi];
+            if (listed(d.variants, v.label) && v.args.count(d.row_arg) && v.args.count(d.column_arg) &&
+                v.args.at(d.row_arg) == r && v.args.at(d.column_arg) == c)
+              value = cell(vi, d.probes.front());
+          }
+          row.push_back(value);
+        }
+        rows.push_back(row);
+      }
     }
-    figures.push_back({{"id", f.id}, {"title", f.title}, {"xlabel", f.xlabel}, {"ylabel", f.ylabel},
-                       {"logx", f.logx}, {"logy", f.logy}, {"curves", curves}});
+    s_tables.push_back({{"title", d.title}, {"columns", columns}, {"rows", rows}});
   }
 
   nlohmann::json setup = s.setup;
@@ -761,6 +1082,13 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       {"case", s.case_path}, {"parameter", s.parameter}, {"reference", s.reference_text}, {"setup", setup},
       {"provenance", prov}, {"passed", passed}, {"checks", checks}, {"series", series_json},
       {"figures", figures}, {"tables", s_tables}};
+  result["provenance"]["wall_time_s"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  result["provenance"]["command"] = fmt::format("dem2d study {} --out {} --jobs {}{}", file.string(), out.string(),
+                                                opt.jobs, opt.use_cache ? "" : " --fresh");
+  // The study's README (purpose, findings, known limits) travels with the result: the report shows it.
+  if (const fs::path readme = fs::absolute(file).parent_path() / "README.md"; fs::exists(readme))
+    result["readme"] = dem::read_file(readme);
   result["provenance"]["runs_reused"] = cache.reused.load();
   result["provenance"]["runs_run"] = cache.ran.load();
   dem::write_file_atomic(out / "result.json", result.dump(2) + "\n");
