@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <algorithm>
 #include <sstream>
 
 #include "dem/run/run.hpp"
@@ -156,4 +157,30 @@ TEST_CASE("A slope probe against another quantity gives dq/dx", "[run]") {
   REQUIRE(r.probes.at("dy_dx"));
   CHECK_THAT(*r.probes.at("dy_dx"), Catch::Matchers::WithinRel(1.0 / 0.3, 1e-9));
   CHECK_THROWS_WITH(run(c, {}, {"probe.2.against=e1.nothing"}), Contains("against"));
+}
+
+TEST_CASE("Snapshots show the crack: each contact line carries its linked segments", "[run][vtk]") {
+  // The M-D beam (2 x 8, N = 5) past its peak: some faces keep all 5 links, some lost part of them.
+  const auto out = fresh_dir("crack");
+  const auto r = run("cases/beam/mortar_2x8.toml", out, {"output.vtk=true", "output.vtk_every=1000"});
+  REQUIRE(r.status == "past peak");
+  std::vector<fs::path> snaps;
+  for (const auto& f : fs::directory_iterator(out / "vtk")) snaps.push_back(f.path());
+  REQUIRE(snaps.size() > 3);
+  std::sort(snaps.begin(), snaps.end());
+  snaps.erase(snaps.begin());  // t = 0: before the first sweep, no contact has its links yet
+  auto links_of = [](const fs::path& p) {
+    const std::string s = slurp(p);
+    const auto a = s.find("Name=\"links\"");
+    REQUIRE(a != std::string::npos);
+    std::istringstream in(s.substr(s.find('\n', a), s.find("</DataArray>", a) - s.find('\n', a)));
+    std::vector<int> v;
+    for (int x; in >> x;) v.push_back(x);
+    return v;
+  };
+  const auto first = links_of(snaps.front()), last = links_of(snaps.back());
+  CHECK(std::count(first.begin(), first.end(), 5) > 0);
+  CHECK(std::count_if(first.begin(), first.end(), [](int n) { return n > 1 && n < 5; }) == 0);  // intact early in the loading
+  CHECK(std::count_if(last.begin(), last.end(), [](int n) { return n >= 1 && n < 5; }) >
+        std::count_if(first.begin(), first.end(), [](int n) { return n >= 1 && n < 5; }));  // broken faces
 }

@@ -66,6 +66,13 @@ void write_vtp(const std::filesystem::path& file, const Simulation& sim) {
     for (const auto& c : contacts) out.print("{:.9g}\n", name[0] == 'n' ? c.fn : c.fs);
     out.print("</DataArray>\n");
   }
+  // Linked segments of each contact (M8: a broken segment is unlinked; 1 for a linear contact): a
+  // crack shows as faces with fewer links, and a face whose links all broke and whose cores parted
+  // is no contact any more (its line is gone).
+  out.print("<DataArray type=\"Int32\" Name=\"links\" format=\"ascii\">\n");
+  for (std::size_t k = 0; k < ids.size(); ++k) out.print("0\n");
+  for (const auto& c : contacts) out.print("{}\n", c.links);
+  out.print("</DataArray>\n");
   out.print("</CellData>\n<Verts><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
   for (std::size_t k = 0; k < ids.size(); ++k) out.print("{}\n", k);
   out.print("</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
