@@ -17,6 +17,7 @@
 #include "dem/run/output_files.hpp"
 #include "dem/run/run.hpp"
 #include "engine/convergence.hpp"
+#include "engine/run_cache.hpp"
 #include "engine/sensitivity_estimators.hpp"
 #include "engine/sensitivity_functions.hpp"
 #include "engine/sensitivity_sampling.hpp"
@@ -190,27 +191,7 @@ Sens read_sens(const fs::path& file) {
   return s;
 }
 
-// ---- runs: the study engine's scheme (cache key = code identity + resolved case + overrides) ----
-
-std::uint64_t fnv1a(std::string_view text, std::uint64_t h = 1469598103934665603ull) {
-  for (unsigned char ch : text) {
-    h ^= ch;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
-const std::string& code_identity() {
-  static const std::string id = [] {
-    std::string exe;
-    try {
-      exe = dem::read_file("/proc/self/exe");
-    } catch (const std::exception&) {
-    }
-    return fmt::format("{}+{:016x}", dem::provenance()["code_version"].get<std::string>(), fnv1a(exe));
-  }();
-  return id;
-}
+// ---- runs: the study engine's cache and pool (engine/run_cache.hpp) ----
 
 struct Run {
   std::vector<double> u;                      // unit coordinates (OAT: NaN for parameters left at base)
@@ -234,22 +215,15 @@ struct Runner {
       return;
     }
     const dem::Case c = dem::read_case(s.root / s.case_path, r.sets);  // a bad path or value: the study fails
-    std::string key = code_identity() + "\n" + c.resolved.dump();
-    for (const auto& x : r.sets) key += "\n" + x;
-    const fs::path entry = cache_dir / fmt::format("{:016x}.json", fnv1a(key));
+    const fs::path entry = cache_entry(cache_dir, c.resolved, r.sets);
     std::map<std::string, std::optional<double>> probes;
     bool done = false;
-    if (fs::exists(entry)) {
-      try {
-        const nlohmann::json j = nlohmann::json::parse(dem::read_file(entry));
-        r.status = j.at("status").get<std::string>();
-        r.message = j.at("message").get<std::string>();
-        for (const auto& [k, v] : j.at("probes").items())
-          probes[k] = v.is_null() ? std::nullopt : std::optional<double>(v.get<double>());
-        done = true;
-        ++reused;
-      } catch (const std::exception&) {
-      }
+    if (const auto cached = read_cached(entry)) {
+      r.status = cached->status;
+      r.message = cached->message;
+      probes = cached->probes;
+      done = true;
+      ++reused;
     }
     if (!done) {
       try {
@@ -262,11 +236,7 @@ struct Runner {
         r.status = "refused";
         r.message = e.what();
       }
-      nlohmann::json pj = nlohmann::json::object();
-      for (const auto& [k, v] : probes) pj[k] = v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-      dem::write_file_atomic(entry, nlohmann::json{{"status", r.status}, {"message", r.message}, {"probes", pj},
-                                                   {"case", c.path.string()}, {"overrides", r.sets},
-                                                   {"code", code_identity()}}.dump() + "\n", false);
+      write_cached(entry, {r.status, r.message, 0.0, probes}, c.path.string(), r.sets);
       ++ran;
     }
     for (const auto& o : s.outputs) {
@@ -278,26 +248,6 @@ struct Runner {
   }
 };
 
-template <class F>
-void parallel_for(std::size_t n, int jobs, F&& f) {
-  std::atomic<std::size_t> next{0};
-  std::vector<std::thread> pool;
-  std::mutex err_m;
-  std::exception_ptr err;
-  for (int t = 0; t < std::max(1, jobs); ++t)
-    pool.emplace_back([&] {
-      for (std::size_t k; (k = next++) < n;) {
-        try {
-          f(k);
-        } catch (...) {
-          std::lock_guard<std::mutex> l(err_m);
-          if (!err) err = std::current_exception();
-        }
-      }
-    });
-  for (auto& th : pool) th.join();
-  if (err) std::rethrow_exception(err);
-}
 
 std::string num(double x) { return std::isfinite(x) ? fmt::format("{:.6g}", x) : std::string("—"); }
 nlohmann::json jnum(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }

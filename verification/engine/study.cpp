@@ -22,6 +22,7 @@
 #include "dem/run/interrupt.hpp"
 #include "dem/run/output_files.hpp"
 #include "engine/convergence.hpp"
+#include "engine/run_cache.hpp"
 #include "ref/registry.hpp"
 
 namespace fs = std::filesystem;
@@ -385,29 +386,6 @@ struct RunOut {
   double eps = 0.0;
 };
 
-/// FNV-1a 64.
-std::uint64_t fnv1a(std::string_view text, std::uint64_t h = 1469598103934665603ull) {
-  for (unsigned char ch : text) {
-    h ^= ch;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
-/// The code version as a cache key: the recorded version (git describe) and a hash of this executable,
-/// so that a rebuilt, uncommitted change never reuses results of the old code.
-const std::string& code_identity() {
-  static const std::string id = [] {
-    std::string exe;
-    try {
-      exe = dem::read_file("/proc/self/exe");
-    } catch (const std::exception&) {
-    }
-    return fmt::format("{}+{:016x}", dem::provenance()["code_version"].get<std::string>(), fnv1a(exe));
-  }();
-  return id;
-}
-
 /// Finished runs of a study, one small JSON file per run in <study folder>/cache/, keyed by a hash of
 /// the resolved case (the case file's content after the overrides), the overrides, the run folder
 /// and the code identity. A killed study reuses them; `--fresh` ignores them.
@@ -422,63 +400,26 @@ RunOut run_one(const Study& s, const std::vector<std::string>& sets, const fs::p
   const dem::Case c = dem::read_case(s.root / s.case_path, sets);
   fs::path entry;
   if (g_cache && !g_cache->dir.empty()) {
-    std::string key = code_identity() + "\n" + c.resolved.dump() + "\n" + out.string();
-    for (const auto& x : sets) key += "\n" + x;
-    entry = g_cache->dir / fmt::format("{:016x}.json", fnv1a(key));
+    entry = cache_entry(g_cache->dir, c.resolved, sets, out);
     const bool files_ok = out.empty() || (fs::exists(out / "series.csv") && fs::exists(out / "summary.json"));
-    if (files_ok && fs::exists(entry)) {
-      try {
-        const nlohmann::json j = nlohmann::json::parse(dem::read_file(entry));
-        RunOut r{{}, j.at("status").get<std::string>(), j.at("message").get<std::string>(), j.at("eps").get<double>()};
-        for (const auto& [k, v] : j.at("probes").items())
-          r.probes[k] = v.is_null() ? std::nullopt : std::optional<double>(v.get<double>());
+    if (files_ok)
+      if (const auto cached = read_cached(entry)) {
         ++g_cache->reused;
-        return r;
-      } catch (const std::exception&) {
-        // an unreadable entry: run again
+        return {cached->probes, cached->status, cached->message, cached->eps};
       }
-    }
   }
   dem::RunOptions o;  // files only for runs that feed a figure
   o.out_dir = out;
   const dem::RunResult r = dem::run_case(c, o);
   if (r.status == "interrupted") throw StudyInterrupted(fmt::format("study {}: {}", s.name, r.message));
   if (!entry.empty()) {
-    nlohmann::json probes = nlohmann::json::object();
-    for (const auto& [k, v] : r.probes) probes[k] = v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-    dem::write_file_atomic(entry, nlohmann::json{{"status", r.status}, {"message", r.message},
-                                                 {"eps", r.element_steps_per_second}, {"probes", probes},
-                                                 {"case", c.path.string()}, {"overrides", sets},
-                                                 {"code", code_identity()}, {"provenance", dem::provenance()}}
-                                      .dump() + "\n", false);
+    write_cached(entry, {r.status, r.message, r.element_steps_per_second, r.probes}, c.path.string(), sets);
     ++g_cache->ran;
   }
   return {r.probes, r.status, r.message, r.element_steps_per_second};
 }
 
 std::string fmt_value(std::optional<double> v) { return v ? fmt::format("{:.6g}", *v) : std::string("—"); }
-
-/// Runs jobs tasks in parallel, in a fixed assignment of results to slots (deterministic output).
-template <class F>
-void parallel_for(std::size_t n, int jobs, F&& f) {
-  std::atomic<std::size_t> next{0};
-  std::vector<std::thread> pool;
-  std::mutex err_m;
-  std::exception_ptr err;
-  for (int t = 0; t < std::max(1, jobs); ++t)
-    pool.emplace_back([&] {
-      for (std::size_t k; (k = next++) < n;) {
-        try {
-          f(k);
-        } catch (...) {
-          std::lock_guard<std::mutex> l(err_m);
-          if (!err) err = std::current_exception();
-        }
-      }
-    });
-  for (auto& th : pool) th.join();
-  if (err) std::rethrow_exception(err);
-}
 
 }  // namespace
 

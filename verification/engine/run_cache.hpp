@@ -1,0 +1,67 @@
+#pragma once
+// What the study engine and the sensitivity engine share for their runs: a cache of finished runs
+// (resumable studies) and a small thread pool with a fixed assignment of results to slots.
+#include <atomic>
+#include <exception>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace ver {
+
+/// FNV-1a 64.
+std::uint64_t fnv1a(std::string_view text, std::uint64_t h = 1469598103934665603ull);
+
+/// The code version as a cache key: the recorded version (git describe) and a hash of this executable,
+/// so that a rebuilt, uncommitted change never reuses results of the old code.
+const std::string& code_identity();
+
+/// A finished run as the cache keeps it.
+struct CachedRun {
+  std::string status, message;
+  double eps = 0.0;  // element-steps per second
+  std::map<std::string, std::optional<double>> probes;
+};
+
+/// The cache file of a run, in `dir`: keyed by the code identity, the resolved case (its content after
+/// the overrides), the run folder (`out`, empty if none) and the overrides.
+std::filesystem::path cache_entry(const std::filesystem::path& dir, const nlohmann::json& resolved_case,
+                                  const std::vector<std::string>& sets, const std::filesystem::path& out = {});
+
+/// The cached run, or nothing if there is none or it cannot be read (then run again).
+std::optional<CachedRun> read_cached(const std::filesystem::path& entry);
+
+/// Writes a finished run (atomically) with the case path, the overrides and the code identity.
+void write_cached(const std::filesystem::path& entry, const CachedRun& run, const std::string& case_path,
+                  const std::vector<std::string>& sets);
+
+/// Runs f(0) … f(n−1) on `jobs` threads; rethrows the first exception after all have finished.
+template <class F>
+void parallel_for(std::size_t n, int jobs, F&& f) {
+  std::atomic<std::size_t> next{0};
+  std::vector<std::thread> pool;
+  std::mutex err_m;
+  std::exception_ptr err;
+  for (int t = 0; t < std::max(1, jobs); ++t)
+    pool.emplace_back([&] {
+      for (std::size_t k; (k = next++) < n;) {
+        try {
+          f(k);
+        } catch (...) {
+          std::lock_guard<std::mutex> l(err_m);
+          if (!err) err = std::current_exception();
+        }
+      }
+    });
+  for (auto& th : pool) th.join();
+  if (err) std::rethrow_exception(err);
+}
+
+}  // namespace ver
