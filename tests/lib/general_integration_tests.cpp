@@ -55,16 +55,7 @@ TEST_CASE("A distant fixed element changes nothing, bit for bit, K18 and K19 wit
   CHECK(contacts_seen >= 5);  // 3 at the start, the late impact, and more
   const auto& ea = a.model().elements;
   const auto& eb = b.model().elements;
-  for (std::size_t i = 0; i < ea.size(); ++i) {
-    CAPTURE(i);
-    CHECK(ea.x[i] == eb.x[i]);
-    CHECK(ea.y[i] == eb.y[i]);
-    CHECK(ea.phi[i] == eb.phi[i]);
-    CHECK(ea.vx[i] == eb.vx[i]);
-    CHECK(ea.vy[i] == eb.vy[i]);
-    CHECK(ea.omega[i] == eb.omega[i]);
-    CHECK(ea.dphi[i] == eb.dphi[i]);
-  }
+  test::check_same_state(ea, eb);
   CHECK(eb.x[4] == 10.0);  // the fixed element stays
   CHECK(eb.omega[4] == 0.0);
   CHECK(std::abs(ea.omega[0] - 5.0) > 1e-3);  // the spins were changed by the contacts

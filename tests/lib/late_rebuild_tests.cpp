@@ -59,14 +59,7 @@ TEST_CASE("Contacts between elements that start more than a skin apart are found
   CHECK(b.rebuilds() == 1);     // the huge skin did not
   const auto& ea = a.model().elements;
   const auto& eb = b.model().elements;
-  for (std::size_t i = 0; i < ea.size(); ++i) {
-    CAPTURE(i);
-    CHECK(ea.x[i] == eb.x[i]);
-    CHECK(ea.y[i] == eb.y[i]);
-    CHECK(ea.vx[i] == eb.vx[i]);
-    CHECK(ea.vy[i] == eb.vy[i]);
-    CHECK(ea.omega[i] == eb.omega[i]);
-  }
+  test::check_same_state(ea, eb);
   if (!wall) CHECK(ea.vx[0] < 0.0);  // the pair bounced
   if (wall) CHECK(ea.vy[0] > 0.5);   // the piston pushed the resting disk
 }

@@ -91,6 +91,22 @@ std::string message_of(F&& f) {
 /// Source folder of the tests' case files.
 inline std::filesystem::path case_dir() { return std::filesystem::path(DEM2D_SOURCE_DIR) / "tests/lib/cases"; }
 
+/// The elements of `a` have the same state bit for bit in `b` (positions, rotations, velocities,
+/// rotation increments); `b` may hold more elements after them.
+inline void check_same_state(const dem::Elements& a, const dem::Elements& b) {
+  REQUIRE(a.size() <= b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    CAPTURE(i);
+    CHECK(a.x[i] == b.x[i]);
+    CHECK(a.y[i] == b.y[i]);
+    CHECK(a.phi[i] == b.phi[i]);
+    CHECK(a.vx[i] == b.vx[i]);
+    CHECK(a.vy[i] == b.vy[i]);
+    CHECK(a.omega[i] == b.omega[i]);
+    CHECK(a.dphi[i] == b.dphi[i]);
+  }
+}
+
 /// A path below the source root.
 inline std::filesystem::path source(const std::string& rel) { return std::filesystem::path(DEM2D_SOURCE_DIR) / rel; }
 
