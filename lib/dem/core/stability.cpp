@@ -470,7 +470,16 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
       const Weights w[3] = {elem.*field, seg.*field, pt.*field};
       return arrangement_max(w, counts, sets, gaps);
     };
-    const Arrangement ak = run(&Kind::k), ac = run(&Kind::c), aks = run(&Kind::k_stick), acs = run(&Kind::c_stick);
+    // the sticking weights equal the slipping ones when no Coulomb shear spring is involved (face
+    // laws, K_s = 0): the arrangement search is then not repeated
+    auto same = [&](Weights Kind::*a, Weights Kind::*b) {
+      for (const Kind* k : {&elem, &seg, &pt})
+        if ((k->*a).w != (k->*b).w || (k->*a).b != (k->*b).b) return false;
+      return true;
+    };
+    const Arrangement ak = run(&Kind::k), ac = run(&Kind::c);
+    const Arrangement aks = same(&Kind::k, &Kind::k_stick) ? ak : run(&Kind::k_stick);
+    const Arrangement acs = same(&Kind::c, &Kind::c_stick) ? ac : run(&Kind::c_stick);
     double xk = 0.0, xc = 0.0, xhopf = inf;
     std::string xsrc;
     for (const StabilityTerm& t : extra) {
