@@ -17,6 +17,7 @@
 #include "dem/run/checkpoint.hpp"
 #include "dem/run/interrupt.hpp"
 #include "dem/run/output_files.hpp"
+#include "dem/run/resolved_case.hpp"
 #include "dem/run/vtk_writer.hpp"
 
 #include "dem2d_version.hpp"  // generated at build time: DEM2D_VERSION
@@ -26,6 +27,16 @@
 
 namespace dem {
 
+static std::string compiler() {
+#if defined(__clang__)
+  return "clang++ " __clang_version__;
+#elif defined(__GNUC__)
+  return "g++ " __VERSION__;
+#else
+  return "unknown compiler";
+#endif
+}
+
 nlohmann::json provenance() {
   char host[256] = {0};
   gethostname(host, sizeof host - 1);
@@ -33,7 +44,7 @@ nlohmann::json provenance() {
   char date[64];
   std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   return {{"code_version", DEM2D_VERSION}, {"build_type", DEM2D_BUILD_TYPE}, {"date", date}, {"machine", host},
-          {"compiler", fmt::format("g++ {}.{}", __GNUC__, __GNUC_MINOR__)}};
+          {"compiler", compiler()}};
 }
 
 namespace {
@@ -309,8 +320,10 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
                               .dump(2) + "\n");
     if (!series.empty()) {
       csv.open(opt.out_dir / "series.csv");
-      std::string head = "# case: " + c.path.string() + ", code " + provenance()["code_version"].get<std::string>() + "\n";
-      for (std::size_t k = 0; k < series.size(); ++k) head += (k ? "," : "") + csv_field(c.output.series[k]);
+      // one header line, each column with its unit ("t [s]"): pandas.read_csv reads it with its
+      // defaults; the case and the code version are in summary.json
+      std::string head;
+      for (std::size_t k = 0; k < series.size(); ++k) head += (k ? "," : "") + csv_field(series_header(c.output.series[k]));
       csv.write(head + "\n");
     }
     if (c.output.vtk) std::filesystem::create_directories(opt.out_dir / "vtk");
@@ -573,7 +586,10 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   }
 
   nlohmann::json probes_json = nlohmann::json::object();
-  for (const auto& [k, v] : res.probes) probes_json[k] = v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+  for (const ProbeSpec& s : c.probes) {  // each value with its SI unit
+    const auto& v = res.probes.at(s.name);
+    probes_json[s.name] = {{"value", v ? nlohmann::json(*v) : nlohmann::json(nullptr)}, {"unit", probe_unit(s)}};
+  }
   const Energies en = sim.energies();
   res.summary = {
       {"case", c.path.string()},
@@ -595,7 +611,10 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       {"element_steps_per_second", res.element_steps_per_second},
       {"energies", {{"kinetic", en.kinetic}, {"potential", en.potential}, {"elastic", en.elastic}}},
       {"probes", probes_json},
-      {"resolved_case", c.resolved},
+      {"units", {{"time", "s"}, {"dt", "s"}, {"stability_limit", "s"}, {"wall_seconds", "s"},
+                 {"element_steps_per_second", "1/s"}, {"energies", "J"}}},
+      {"case_as_read", c.resolved},
+      {"resolved_case", resolved_case_si(c)},
   };
   res.summary["case_hash"] = case_hash(c);
   if (restart)
