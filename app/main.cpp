@@ -32,6 +32,10 @@
 
 namespace fs = std::filesystem;
 
+#ifndef DEM2D_SOURCE_DIR
+#define DEM2D_SOURCE_DIR "."
+#endif
+
 namespace {
 
 /// One contact law's resolved settings in words, defaults included (check prints every one).
@@ -245,6 +249,10 @@ int main(int argc, char** argv) {
   auto* rep = app.add_subcommand("report", "Write the verification report (index.html, index.md) from study results");
   rep->add_option("--studies", studies_dir, "Folder with one sub-folder per study holding result.json");
   rep->add_option("--out", report_dir, "Report folder");
+  std::string docs_dir;
+  rep->add_option("--docs", docs_dir,
+                  "The docs/ folder rendered into the page, every citation linked to it (default: ./docs, else the "
+                  "source tree's)");
 
   CLI11_PARSE(app, argc, argv);
   dem::install_interrupt_handlers();  // SIGINT / SIGTERM: runs stop at the next step and write everything
@@ -277,6 +285,8 @@ int main(int argc, char** argv) {
       o.out_dir = report_dir;
       o.title = "dem2d verification report";
       o.provenance = dem::provenance();
+      o.docs_dir = !docs_dir.empty() ? fs::path(docs_dir)
+                   : fs::is_directory("docs") ? fs::path("docs") : fs::path(DEM2D_SOURCE_DIR) / "docs";
       print_summary(studies_dir);
       const report::Written w = report::write_report(o);
       fmt::print("report: {} studies, {} figures\n  {}\n  {}\n", w.studies, w.figures, fs::absolute(w.html).string(),
