@@ -89,7 +89,8 @@ std::string limit_in_words(const dem::Model& m, const dem::StabilityBound& b, do
     else
       s += "K19 (averaged increment) loses stability on its flip branch: dt < 12/(sqrt(c^2 + 12 lambda) + c)";
   }
-  return s + " (normal springs; Coulomb shear springs are left out: a sliding contact bounds a shear mode)";
+  return s + " (the shear springs of linear, Coulomb contacts are left out of this limit: a sliding contact bounds a "
+             "shear mode)";
 }
 
 int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
@@ -285,6 +286,10 @@ int main(int argc, char** argv) {
       o.out_dir = report_dir;
       o.title = "dem2d verification report";
       o.provenance = dem::provenance();
+      std::string command;  // the exact command that wrote the report
+      for (int k = 0; k < argc; ++k) command += (k ? " " : "") + std::string(argv[k]);
+      o.provenance["report command"] = command;
+      o.provenance["working directory"] = fs::current_path().string();
       o.docs_dir = !docs_dir.empty() ? fs::path(docs_dir)
                    : fs::is_directory("docs") ? fs::path("docs") : fs::path(DEM2D_SOURCE_DIR) / "docs";
       print_summary(studies_dir);

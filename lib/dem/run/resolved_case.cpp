@@ -103,7 +103,9 @@ std::string probe_unit(const ProbeSpec& p) {
     case ProbeKind::slope: {
       const std::string q = quantity_unit(p.quantity), x = p.against.empty() ? "s" : quantity_unit(p.against);
       if (x == "1") return q;
-      return (q == "1" ? std::string("1") : q) + "/" + (x.find_first_of("/*") != std::string::npos ? "(" + x + ")" : x);
+      if (x == "s" && q.size() > 2 && q.compare(q.size() - 2, 2, "/s") == 0) return q + "^2";  // m/s per s: m/s^2
+      const std::string num = q.find('/') != std::string::npos ? "(" + q + ")" : q;
+      return num + "/" + (x.find_first_of("/*") != std::string::npos ? "(" + x + ")" : x);
     }
     default:
       return quantity_unit(p.quantity);
