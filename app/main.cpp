@@ -27,6 +27,7 @@
 #include "dem/core/simulation.hpp"
 #include "engine/sensitivity.hpp"
 #include "engine/study.hpp"
+#include "ref/library_versions.hpp"
 #include "report.hpp"
 #include "study_result.hpp"
 
@@ -289,6 +290,8 @@ int main(int argc, char** argv) {
       std::string command;  // the exact command that wrote the report
       for (int k = 0; k < argc; ++k) command += (k ? " " : "") + std::string(argv[k]);
       o.provenance["report command"] = command;
+      o.provenance["libraries"] = o.provenance["libraries"].get<std::string>() + ", " + ref::library_versions() +
+                                  ", CLI11 " CLI11_VERSION;
       o.provenance["working directory"] = fs::current_path().string();
       o.docs_dir = !docs_dir.empty() ? fs::path(docs_dir)
                    : fs::is_directory("docs") ? fs::path("docs") : fs::path(DEM2D_SOURCE_DIR) / "docs";

@@ -29,9 +29,12 @@ bool starts_with(const std::string& s, const std::string& p) { return s.rfind(p,
 /// Inline Markdown on escaped text: `code`, **bold**.
 std::string inline_md(const std::string& raw) {
   std::string t = html_escape(raw);
-  static const std::regex code("`([^`]+)`"), bold("\\*\\*([^*]+)\\*\\*");
+  static const std::regex code("`([^`]+)`"), letter("\\*([A-Za-z])\\*"), bold("\\*\\*([^*]+)\\*\\*"),
+      italic("\\*([^*\\s][^*]*)\\*");
   t = std::regex_replace(t, code, "<code>$1</code>");
+  t = std::regex_replace(t, letter, "<em>$1</em>");  // "**K*n***": the letter first, then the bold around it
   t = std::regex_replace(t, bold, "<strong>$1</strong>");
+  t = std::regex_replace(t, italic, "<em>$1</em>");
   return t;
 }
 
@@ -150,6 +153,11 @@ std::string render_md(const std::string& doc, const std::string& text, std::map<
       flush_all();
       continue;
     }
+    if (line.size() >= 3 && line.find_first_not_of('-') == std::string::npos) {  // a rule
+      flush_all();
+      out += "<hr>\n";
+      continue;
+    }
     if (line[0] == '#') {
       flush_all();
       const auto level = line.find_first_not_of('#');
@@ -163,7 +171,7 @@ std::string render_md(const std::string& doc, const std::string& text, std::map<
       }
       if (level == 1) anchors["doc " + doc] = id = "doc-" + doc;
       if (level == 2) after_first_section = true;
-      const int h = static_cast<int>(std::min<std::size_t>(level + 2, 6));  // # → h3 inside the appendix
+      const int h = static_cast<int>(std::min<std::size_t>(std::max<std::size_t>(level + 1, 3), 6));  // #, ## → h3
       out += fmt::format("<h{} id=\"{}\">{}</h{}>\n", h, id, inline_md(title), h);
       continue;
     }
@@ -228,8 +236,8 @@ std::string citation_anchor(const CitedDocs& docs, std::string key) {
 std::string link_citations(const std::string& html, const CitedDocs& docs) {
   if (docs.anchors.empty()) return html;
   static const std::regex cite(
-      "((?:refs|references\\.md)\\s+§\\s?([0-9]+(?:\\.[0-9]+)*))"   // 1, 2
-      "|(model\\.md\\s+§\\s?([0-9]+(?:\\.[0-9]+)*))"                 // 3, 4
+      "((?:refs|(?:docs/)?references\\.md)\\s+§\\s?([0-9]+(?:\\.[0-9]+)*))"   // 1, 2
+      "|((?:docs/)?model\\.md\\s+§\\s?([0-9]+(?:\\.[0-9]+)*))"                 // 3, 4
       "|((?:docs/)?findings(?:\\.md)?,?\\s+(F[0-9]+|[KM]-[0-9]+))"   // 5, 6
       "|(docs/(model|references|findings)\\.md)"                     // 7, 8
       "|\\b(([KM])([0-9]{1,2})(?:\\.[a-z0-9]+)?)\\b(?![-.][A-Za-z0-9])");  // 9, 10, 11

@@ -46,6 +46,7 @@ TEST_CASE("Citations in text are linked, not inside tags, links, figures or unkn
   const auto& d = real_docs();
   const std::string page =
       "<p>tolerance from refs §1.6 and (K19); M15.1 linearised; see findings F2 and docs/findings.md.</p>"
+      "<p>closed forms of docs/references.md §1.2</p>"
       "<p title=\"refs §1.6\">K99 and M27 are no labels; M-A is a case</p>"
       "<svg><text>K19</text></svg><a href=\"x\">refs §2</a>";
   const std::string out = report::link_citations(page, d);
@@ -54,6 +55,7 @@ TEST_CASE("Citations in text are linked, not inside tags, links, figures or unkn
   CHECK(out.find("<a class=\"cite\" href=\"#doc-model-M15-1\">M15.1</a>") != std::string::npos);
   CHECK(out.find("href=\"#doc-findings-F2\">findings F2</a>") != std::string::npos);
   CHECK(out.find("href=\"#doc-findings\">docs/findings.md</a>") != std::string::npos);
+  CHECK(out.find("href=\"#doc-references-1-2\">docs/references.md §1.2</a>") != std::string::npos);
   CHECK(out.find("<p title=\"refs §1.6\">K99 and M27 are no labels; M-A is a case</p>") != std::string::npos);
   CHECK(out.find("<svg><text>K19</text></svg><a href=\"x\">refs §2</a>") != std::string::npos);
   // without docs nothing changes

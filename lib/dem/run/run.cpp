@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <toml++/impl/version.h>
 
 #include "dem/run/quantities.hpp"
 #include "dem/cases/text.hpp"
@@ -44,7 +45,11 @@ nlohmann::json provenance() {
   char date[64];
   std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   return {{"code_version", DEM2D_VERSION}, {"build_type", DEM2D_BUILD_TYPE}, {"date", date}, {"machine", host},
-          {"compiler", compiler()}};
+          {"compiler", compiler()},
+          {"libraries", fmt::format("toml++ {}.{}.{}, nlohmann_json {}.{}.{}, fmt {}.{}.{}", TOML_LIB_MAJOR, TOML_LIB_MINOR,
+                                    TOML_LIB_PATCH, NLOHMANN_JSON_VERSION_MAJOR, NLOHMANN_JSON_VERSION_MINOR,
+                                    NLOHMANN_JSON_VERSION_PATCH, FMT_VERSION / 10000, FMT_VERSION / 100 % 100,
+                                    FMT_VERSION % 100)}};
 }
 
 namespace {
