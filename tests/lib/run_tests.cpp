@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "dem/run/quantities.hpp"
 #include "dem/run/run.hpp"
 
 #include "test_support.hpp"
@@ -196,4 +197,23 @@ TEST_CASE("Snapshots show the crack: each contact line carries its linked segmen
   CHECK(std::count_if(first.begin(), first.end(), [](int n) { return n > 1 && n < 5; }) == 0);  // intact early in the loading
   CHECK(std::count_if(last.begin(), last.end(), [](int n) { return n >= 1 && n < 5; }) >
         std::count_if(first.begin(), first.end(), [](int n) { return n >= 1 && n < 5; }));  // broken faces
+}
+
+TEST_CASE("Every quantity name has its SI unit for the series header and the probes", "[run][units]") {
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"t", "s"}, {"step", "1"}, {"contacts", "1"}, {"energy.kinetic", "J"}, {"energy.total", "J"},
+      {"mean_increment", "m"}, {"unbalanced_force_ratio", "1"}, {"e3.x", "m"}, {"e3.y", "m"}, {"e3.phi", "rad"},
+      {"e3.vx", "m/s"}, {"e3.vy", "m/s"}, {"e3.omega", "rad/s"}, {"e3.fx", "N"}, {"e3.fy", "N"}, {"e3.moment", "N*m"},
+      {"e3.px(1,-1)", "m"}, {"e0.py(0.5,-1)", "m"}, {"e0.gap.floor", "m"}, {"e0.gap.e1", "m"}, {"e0.fn.floor", "N"},
+      {"e0.fs.e2", "N"}, {"e0.links.floor", "1"}, {"floor.fx", "N"}, {"floor.fy", "N"}, {"floor.x", "m"},
+      {"floor.y", "m"}, {"plate_travel", "m"}, {"plate_dx", "m"}, {"plate_dy", "m"}, {"e0.corner_slide(38.5)", "m"}};
+  for (const auto& [name, unit] : expected) {
+    INFO(name);
+    CHECK(dem::quantity_unit(name) == unit);
+  }
+  CHECK(dem::quantity_unit("e0.colour") == "unknown");
+  CHECK(dem::series_header("e0.vy") == "e0.vy [m/s]");
+  CHECK(dem::series_column_name("e0.vy [m/s]") == "e0.vy");
+  CHECK(dem::series_column_name("e0.px(1,-1) [m]") == "e0.px(1,-1)");
+  CHECK(dem::series_column_name("t") == "t");
 }

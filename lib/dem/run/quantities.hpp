@@ -36,7 +36,7 @@ double unbalanced_force_ratio(const Simulation& s);
 QuantityFn compile_quantity(const std::string& name, const Model& m);
 
 /// The SI unit of a quantity name (one compile_quantity accepts): "s", "m", "N", "J", "rad", "m/s",
-/// "rad/s", "N*m", "1" (a count or a ratio).
+/// "rad/s", "N*m", "1" (a count or a ratio); "unknown" for a name it does not know.
 std::string quantity_unit(const std::string& name);
 
 /// A series.csv header cell: the quantity and its unit, "e0.y [m]" (pandas reads it as one column name).
