@@ -31,7 +31,9 @@ std::string inline_md(const std::string& raw) {
   std::string t = html_escape(raw);
   static const std::regex code("`([^`]+)`"), letter("\\*([A-Za-z])\\*"), bold("\\*\\*([^*]+)\\*\\*"),
       italic("\\*([^*\\s][^*]*)\\*");
+  static const std::regex bold_italic_tail("\\*\\*([^*]+)\\*([^*]+)\\*\\*\\*");  // **K*n***
   t = std::regex_replace(t, code, "<code>$1</code>");
+  t = std::regex_replace(t, bold_italic_tail, "<strong>$1<em>$2</em></strong>");
   t = std::regex_replace(t, letter, "<em>$1</em>");  // "**K*n***": the letter first, then the bold around it
   t = std::regex_replace(t, bold, "<strong>$1</strong>");
   t = std::regex_replace(t, italic, "<em>$1</em>");

@@ -90,8 +90,12 @@ std::vector<HeaderField> header_fields(const nlohmann::json& provenance,
       fields.push_back(f);
   if (provenance.is_object())
     for (const auto& [key, value] : provenance.items())
-      if (key != "code_version" && key != "build_type" && key != "machine" && key != "date")
-        fields.push_back({key, format_value(value)});
+      if (key != "code_version" && key != "build_type" && key != "machine" && key != "date") {
+        std::string label = key;  // "report command", "wall_time_s" → "Report command", "Wall time s"
+        for (char& c : label) c = c == '_' ? ' ' : c;
+        if (!label.empty() && label[0] >= 'a' && label[0] <= 'z') label[0] = static_cast<char>(label[0] - 'a' + 'A');
+        fields.push_back({label, format_value(value)});
+      }
   return fields;
 }
 
