@@ -22,16 +22,77 @@
 #include "dem/cases/case_file.hpp"
 #include "dem/run/interrupt.hpp"
 #include "dem/run/output_files.hpp"
+#include "dem/run/resolved_case.hpp"
 #include "dem/run/run.hpp"
 #include "dem/core/simulation.hpp"
 #include "engine/sensitivity.hpp"
 #include "engine/study.hpp"
+#include "ref/library_versions.hpp"
 #include "report.hpp"
 #include "study_result.hpp"
 
 namespace fs = std::filesystem;
 
+#ifndef DEM2D_SOURCE_DIR
+#define DEM2D_SOURCE_DIR "."
+#endif
+
 namespace {
+
+/// One contact law's resolved settings in words, defaults included (check prints every one).
+std::string law_in_words(const nlohmann::json& l) {
+  std::string s = fmt::format("{}–{}: {} law", l["between"][0].get<std::string>(), l["between"][1].get<std::string>(),
+                              l["law"].get<std::string>());
+  if (l["law"] == "linear") {
+    s += fmt::format(", kn = {:.6g} N/m, ks = {:.6g} N/m, friction = {:.6g}, end rule {} ({}), onset {} ({})",
+                     l["kn"].get<double>(), l["ks"].get<double>(), l["friction"].get<double>(), l["end_rule"].get<std::string>(),
+                     l["end_rule"] == "elastic" ? "opens when e_n < 0, K8" : "no attractive total force",
+                     l["onset"].get<std::string>(),
+                     l["onset"] == "increment" ? "the first increment goes into e_n, Cundall" : "e_n from the overlap");
+  } else {
+    s += fmt::format(", {} segment(s) at the {} ({}), normal increment {}, tangential increment {}, onset {}",
+                     l["segments"].get<int>(), l["positions"] == "centres" ? "segment centres" : "face ends",
+                     l["positions"] == "centres" ? "M13.1" : "M13.2", l["normal_increment"].get<std::string>(),
+                     l["tangential_increment"].get<std::string>(), l["onset"].get<std::string>());
+    if (l.contains("kn")) s += fmt::format(", kn = {:.6g} N/m per segment, ks = {:.6g} N/m", l["kn"].get<double>(), l["ks"].get<double>());
+    else s += fmt::format(", kn = {:.6g} Pa, ks = {:.6g} Pa (moduli)", l["kn_modulus"].get<double>(), l["ks_modulus"].get<double>());
+    s += fmt::format(", tan phi = {:.6g}, tensile strength {:.6g} Pa, cohesion {:.6g} Pa{}{}", l["friction"].get<double>(),
+                     l["tensile_strength"].get<double>(), l["cohesion"].get<double>(), l["bonded"].get<bool>() ? ", bonded at the start" : "",
+                     l["healing"].get<bool>() ? ", healing" : "");
+  }
+  if (l.contains("damping_ratio"))
+    s += fmt::format(", damping ratio {:.6g} ({} mass)", l["damping_ratio"].get<double>(), l["mass_basis"].get<std::string>());
+  else
+    s += fmt::format(", dashpots eta_n = {:.6g}, eta_s = {:.6g} N*s/m", l["eta_n"].get<double>(), l["eta_s"].get<double>());
+  return s;
+}
+
+/// What limits Δt, in words: the element, its contacts, the mode and the scheme's branch (refs §1.5).
+std::string limit_in_words(const dem::Model& m, const dem::StabilityBound& b, double limit) {
+  if (!std::isfinite(limit)) return "no contact can form: no limit from contacts";
+  const auto i = static_cast<std::size_t>(b.element);
+  const dem::Elements& e = m.elements;
+  std::string s = fmt::format(
+      "the fastest mode of element {} (a {} of radius {:.4g} m, mass {:.4g} kg, material {}) pressed by {} element "
+      "and {} wall contact(s) through {} at once, in the worst arrangement of their directions: "
+      "stiffness rate lambda = {:.4g} 1/s^2 (omega = {:.4g} rad/s), damping rate c = {:.4g} 1/s; ",
+      b.element, e.shape[i] == dem::Shape::disk ? "disk" : "PRE", e.radius[i], e.mass[i],
+      m.materials[static_cast<std::size_t>(e.material[i])].name, b.element_contacts, b.wall_contacts,
+      b.law.empty() ? std::string("no contact") : b.law, b.stiffness_rate, std::sqrt(b.stiffness_rate), b.damping_rate);
+  const double lam = b.stiffness_rate, c = b.damping_rate;
+  if (m.numerics.integrator == dem::Integrator::k18) {
+    s += "K18 (symplectic Euler) loses stability when that mode flips sign every step: dt < 4/(sqrt(c^2 + 4 lambda) + c)";
+  } else {
+    const double flip = 12.0 / (std::sqrt(c * c + 12.0 * lam) + c);
+    if (limit < flip * (1.0 - 1e-9))
+      s += fmt::format("K19 (averaged increment) is limited by its Hopf branch, dt < eta/K = {:.6g} s: the averaging needs "
+                       "damping (the flip branch alone would allow {:.6g} s)", limit, flip);
+    else
+      s += "K19 (averaged increment) loses stability on its flip branch: dt < 12/(sqrt(c^2 + 12 lambda) + c)";
+  }
+  return s + " (the shear springs of linear, Coulomb contacts are left out of this limit: a sliding contact bounds a "
+             "shear mode)";
+}
 
 int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
   const dem::Case c = dem::read_case(file, sets);
@@ -39,20 +100,28 @@ int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
   const double limit = dem::check_case(c, &b);
   dem::check_outputs(c);
   const dem::Model& m = c.model;
+  const nlohmann::json rc = dem::resolved_case_si(c);
   fmt::print("{}: OK — {}\n", file.string(), c.title);
   if (!c.source.empty()) fmt::print("  source: {}\n", c.source);
-  fmt::print("  {} elements, {} walls, {} materials, {} contact laws\n", m.elements.size(), m.walls.size(),
+  fmt::print("  {} elements ({} disks, {} PREs), {} walls, {} materials, {} contact laws\n", m.elements.size(),
+             rc["elements"]["disks"].get<std::size_t>(), rc["elements"]["pres"].get<std::size_t>(), m.walls.size(),
              m.materials.size(), m.laws.size());
-  fmt::print("  integrator {}, dt = {:.6g} s, duration = {:.6g} s ({} steps)\n",
-             m.numerics.integrator == dem::Integrator::k18 ? "K18" : "K19", m.numerics.dt, m.numerics.duration,
-             std::llround(std::ceil(m.numerics.duration / m.numerics.dt - 1e-9)));
+  fmt::print("  total mass {:.6g} kg (thickness {:.6g} m), gravity ({:.6g}, {:.6g}) m/s^2\n", dem::total_mass(m), m.thickness,
+             m.gravity.x, m.gravity.y);
+  fmt::print("  integrator {} ({}), velocity start {} ({}), dt = {:.6g} s, duration = {:.6g} s ({} steps)\n",
+             rc["numerics"]["integrator"].get<std::string>(),
+             m.numerics.integrator == dem::Integrator::k18 ? "du = v dt, K18" : "du = (du_prev + v dt)/2, K19",
+             rc["numerics"]["velocity_start"].get<std::string>(),
+             m.numerics.velocity_start == dem::VelocityStart::plain ? "v_-1 = v(0)" : "v_-1 = v(0) - a(0) dt/2",
+             m.numerics.dt, m.numerics.duration, rc["numerics"]["steps"].get<std::int64_t>());
+  fmt::print("  neighbour skin {:.6g} m, blow-up: max step {:.3g} of a radius\n", rc["numerics"]["skin"].get<double>(),
+             m.numerics.max_step_fraction);
+  for (const auto& l : rc["contacts"]) fmt::print("  contact {}\n", law_in_words(l));
+  for (const auto& p : rc["probes"])
+    fmt::print("  probe {}: {} [{}]\n", p["name"].get<std::string>(), p["kind"].get<std::string>(), p["unit"].get<std::string>());
   fmt::print("  stability limit: {:.6g} s (dt is {:.3g} of it), over every contact the case can form\n", limit,
              m.numerics.dt / limit);
-  if (b.element >= 0)
-    fmt::print("    set by element {} ({}) with {} element and {} wall contacts: {}; lambda = {:.4g} 1/s^2, c = {:.4g} 1/s\n",
-               b.element, m.materials[static_cast<std::size_t>(m.elements.material[static_cast<std::size_t>(b.element)])].name,
-               b.element_contacts, b.wall_contacts, b.law.empty() ? std::string("no contact") : b.law, b.stiffness_rate,
-               b.damping_rate);
+  if (b.element >= 0) fmt::print("    what limits it: {}\n", limit_in_words(m, b, limit));
   if (b.limit_sticking < limit)
     fmt::print("    with every Coulomb shear spring sticking: {:.6g} s (dt is {:.3g} of it; a shear mode above it is "
                "bounded by sliding, |f_s| = mu f_n)\n", b.limit_sticking, m.numerics.dt / b.limit_sticking);
@@ -130,6 +199,11 @@ int main(int argc, char** argv) {
   CLI::App app{"dem2d — verification-first 2D distinct element method testbed (Cundall disks, Matsui's "
                "pseudo-rectangle elements)"};
   app.require_subcommand(1);
+  {  // dem2d --version: the code version (git describe), build type and compiler
+    const nlohmann::json p = dem::provenance();
+    app.set_version_flag("--version", fmt::format("dem2d {} ({} build, {})", p["code_version"].get<std::string>(),
+                                                  p["build_type"].get<std::string>(), p["compiler"].get<std::string>()));
+  }
 
   std::string case_file, study_file;
   std::vector<std::string> sets;
@@ -177,6 +251,10 @@ int main(int argc, char** argv) {
   auto* rep = app.add_subcommand("report", "Write the verification report (index.html, index.md) from study results");
   rep->add_option("--studies", studies_dir, "Folder with one sub-folder per study holding result.json");
   rep->add_option("--out", report_dir, "Report folder");
+  std::string docs_dir;
+  rep->add_option("--docs", docs_dir,
+                  "The docs/ folder rendered into the page, every citation linked to it (default: ./docs, else the "
+                  "source tree's)");
 
   CLI11_PARSE(app, argc, argv);
   dem::install_interrupt_handlers();  // SIGINT / SIGTERM: runs stop at the next step and write everything
@@ -209,6 +287,14 @@ int main(int argc, char** argv) {
       o.out_dir = report_dir;
       o.title = "dem2d verification report";
       o.provenance = dem::provenance();
+      std::string command;  // the exact command that wrote the report
+      for (int k = 0; k < argc; ++k) command += (k ? " " : "") + std::string(argv[k]);
+      o.provenance["report command"] = command;
+      o.provenance["libraries"] = o.provenance["libraries"].get<std::string>() + ", " + ref::library_versions() +
+                                  ", CLI11 " CLI11_VERSION;
+      o.provenance["working directory"] = fs::current_path().string();
+      o.docs_dir = !docs_dir.empty() ? fs::path(docs_dir)
+                   : fs::is_directory("docs") ? fs::path("docs") : fs::path(DEM2D_SOURCE_DIR) / "docs";
       print_summary(studies_dir);
       const report::Written w = report::write_report(o);
       fmt::print("report: {} studies, {} figures\n  {}\n  {}\n", w.studies, w.figures, fs::absolute(w.html).string(),

@@ -199,6 +199,10 @@ std::string study_section(const StudyReport& study) {
 std::string markdown_page(const ReportContent& content) {
   std::string out = "# " + escape(content.title) + "\n\n";
   out += key_value_table(content.header);
+  if (!content.docs_html.empty())
+    out += "Citations (\"refs §x.y\", equation labels K1–K28 and M1–M26, \"findings F2\") refer to the repository's "
+           "`docs/references.md`, `docs/model.md` and `docs/findings.md`; `index.html` includes them, every citation "
+           "linked.\n\n";
   out += "## Studies\n\n";
   {
     std::vector<std::string> columns{"Study", "Title", "Checks passed", "Checks failed",

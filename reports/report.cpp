@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "cited_docs.hpp"
 #include "html_writer.hpp"
 #include "markdown_writer.hpp"
 #include "report_content.hpp"
@@ -156,7 +157,9 @@ Written write_report(const Options& options, const fs::path& gnuplot) {
   Written written;
   written.html = options.out_dir / "index.html";
   written.markdown = options.out_dir / "index.md";
-  write_text(written.html, html_page(content));
+  const CitedDocs docs = options.docs_dir.empty() ? CitedDocs{} : render_cited_docs(options.docs_dir);
+  content.docs_html = docs.html;
+  write_text(written.html, link_citations(html_page(content), docs));
   write_text(written.markdown, markdown_page(content));
   written.studies = static_cast<int>(content.studies.size());
   written.figures = renderer.figures_written();

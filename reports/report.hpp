@@ -15,6 +15,8 @@ struct Options {
   std::filesystem::path out_dir;      // created if missing; figures/ inside is regenerated
   std::string title;                  // page title ("" -> "DEM verification report")
   nlohmann::json provenance;          // optional: code_version, build_type, machine, date, ...
+  std::filesystem::path docs_dir;     // the repository's docs/: rendered into the page, citations linked
+                                      // to it (cited_docs.hpp); empty or missing: citations stay text
 };
 
 struct Written {

@@ -1,6 +1,8 @@
 // Counting outcomes and assembling the header of the report.
 #include "report_content.hpp"
 
+#include <cstdio>
+
 #include <fmt/format.h>
 #include <sys/utsname.h>
 
@@ -83,11 +85,17 @@ std::vector<HeaderField> header_fields(const nlohmann::json& provenance,
                                          : *run_dates.begin() + " \u2013 " + *run_dates.rbegin()});
   fields.push_back({"Studies folder", studies_dir.string()});
   for (auto& f : machine_fields())  // the app's provenance may name the compiler already
-    if (!(f.label == "Compiler" && provenance.is_object() && provenance.contains("compiler"))) fields.push_back(f);
+    if (!((f.label == "Compiler" && provenance.is_object() && provenance.contains("compiler")) ||
+          (f.label == "Libraries" && provenance.is_object() && provenance.contains("libraries"))))
+      fields.push_back(f);
   if (provenance.is_object())
     for (const auto& [key, value] : provenance.items())
-      if (key != "code_version" && key != "build_type" && key != "machine" && key != "date")
-        fields.push_back({key, format_value(value)});
+      if (key != "code_version" && key != "build_type" && key != "machine" && key != "date") {
+        std::string label = key;  // "report command", "wall_time_s" → "Report command", "Wall time s"
+        for (char& c : label) c = c == '_' ? ' ' : c;
+        if (!label.empty() && label[0] >= 'a' && label[0] <= 'z') label[0] = static_cast<char>(label[0] - 'a' + 'A');
+        fields.push_back({label, format_value(value)});
+      }
   return fields;
 }
 
@@ -219,6 +227,15 @@ std::vector<HeaderField> machine_fields() {
   fields.push_back({"Libraries", fmt::format("fmt {}.{}.{}, nlohmann_json {}.{}.{}, C++ {}", FMT_VERSION / 10000,
                                              FMT_VERSION / 100 % 100, FMT_VERSION % 100, NLOHMANN_JSON_VERSION_MAJOR,
                                              NLOHMANN_JSON_VERSION_MINOR, NLOHMANN_JSON_VERSION_PATCH, __cplusplus)});
+#ifdef GNUPLOT_EXECUTABLE
+  if (FILE* p = popen(GNUPLOT_EXECUTABLE " --version 2>/dev/null", "r")) {  // the figures' plotter
+    char buf[128] = {0};
+    std::string v = std::fgets(buf, sizeof buf, p) ? buf : "";
+    pclose(p);
+    while (!v.empty() && (v.back() == '\n' || v.back() == '\r')) v.pop_back();
+    if (!v.empty()) fields.push_back({"Plots", v});
+  }
+#endif
   return fields;
 }
 

@@ -32,6 +32,7 @@ struct ReportContent {
   std::string title;
   std::vector<HeaderField> header;
   std::vector<StudyReport> studies;
+  std::string docs_html;  // the cited documentation (cited_docs.hpp), "" if docs/ was not found
 };
 
 struct Counts {

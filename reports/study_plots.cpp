@@ -40,6 +40,11 @@ std::optional<Plot> convergence_plot(const nlohmann::json& series, std::string& 
   if (plot.xlabel.empty()) plot.xlabel = "h";
   plot.ylabel = number_field(series, "reference") ? "abs. error |DEM − reference|"
                                                   : "abs. error |DEM − Richardson|";
+  // the quantity's unit, when its name states one ("δ(0.5 s) [m]", or a `unit` field)
+  std::string unit = text_field(series, "unit");
+  if (const auto open = plot.title.rfind(" ["); unit.empty() && open != std::string::npos && plot.title.back() == ']')
+    unit = plot.title.substr(open + 2, plot.title.size() - open - 3);
+  if (!unit.empty()) plot.ylabel += " [" + unit + "]";
   plot.logx = plot.logy = true;
   plot.key_position = "top left";
   plot.curves.push_back(errors);

@@ -9,6 +9,8 @@ pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtoml
       zlib1g-dev python3-vtk9
       # the browser check of the report (ctest -L browser, tests/browser/check_report.py)
       chromium python3
+      # the test that reads a run's series.csv with pandas.read_csv defaults (tests/outputs/read_series_pandas.py)
+      python3-pandas
       # sanitizers and fuzzing (scripts/sanitize.sh, scripts/fuzz.sh): clang 14, its runtime libraries
       # (ASan, UBSan, libFuzzer: libclang_rt.fuzzer-x86_64.a, only a Recommends of clang) and
       # llvm-symbolizer (package llvm) for readable stack traces

@@ -7,7 +7,8 @@ Checks (each failure is listed; exit status 1 if any):
   - every <figure> holds an inline SVG that the browser laid out with a non-zero size and that
     contains drawn paths (no "missing figure" placeholder); every <img> loaded (naturalWidth > 0);
   - no tick label repeated along an axis of a figure (e.g. every tick reading 1.25e7);
-  - no NaN / inf in the visible text of the page.
+  - no NaN / inf in the visible text of the page (the cited documentation's prose aside);
+  - every link inside the page (contents, studies, citations of docs/) reaches an element of the page.
 The page is copied with a small script appended that measures the figures in the browser and writes
 the results into the DOM, which Chromium prints (--dump-dom).
 """
@@ -23,7 +24,17 @@ import tempfile
 PROBE = r"""
 <script>
 (function () {
-  const out = {figures: [], images: [], text: document.body.innerText};
+  // the visible text without the cited documentation (prose such as "an energy or NaN criterion")
+  const cited = document.getElementById('cited');
+  if (cited) cited.style.display = 'none';
+  const out = {figures: [], images: [], text: document.body.innerText, broken_links: [], cites: 0};
+  if (cited) cited.style.display = '';
+  // every link inside the page (table of contents, study links, citations) reaches an element
+  document.querySelectorAll('a[href^="#"]').forEach(function (a) {
+    const id = decodeURIComponent(a.getAttribute('href').slice(1));
+    if (!document.getElementById(id)) out.broken_links.push(a.getAttribute('href') + ' (' + a.textContent.slice(0, 40) + ')');
+    if (a.classList.contains('cite')) out.cites += 1;
+  });
   document.querySelectorAll('figure').forEach(function (fig, k) {
     const svg = fig.querySelector('svg');
     const caption = (fig.querySelector('figcaption') || {}).textContent || ('figure ' + k);
@@ -140,13 +151,15 @@ def main():
     for img in result["images"]:
         if not img["ok"]:
             problems.append(f"broken image: {img['src']}")
+    for link in result["broken_links"][:20]:
+        problems.append(f"link to nothing in the page: {link}")
     for m in re.finditer(r"(?<![A-Za-z])(nan|NaN|NAN|-?inf|-?Inf|-?INF|Infinity)(?![A-Za-z])", result["text"]):
         start = max(0, m.start() - 60)
         problems.append("NaN/inf in the page: …" + result["text"][start:m.end() + 20].replace("\n", " ") + "…")
         if len(problems) > 40:
             break
     print(f"browser check: {len(result['figures'])} figures, {len(result['images'])} images, "
-          f"{len(result['text'])} characters of text")
+          f"{len(result['text'])} characters of text, {result['cites']} citations linked to the cited documentation")
     for p in problems:
         print("  FAIL " + p)
     if not problems:

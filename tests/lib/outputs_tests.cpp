@@ -35,14 +35,13 @@ fs::path fresh_dir(const std::string& name) {
 }
 
 
-/// The data rows of a series.csv (without the comment and the header).
+/// The data rows of a series.csv (without the header line).
 std::vector<std::string> rows(const fs::path& csv) {
   std::ifstream in(csv);
   std::vector<std::string> out;
   std::string line;
   bool header = false;
   while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
     if (!header) {
       header = true;
       continue;

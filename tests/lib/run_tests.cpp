@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "dem/run/quantities.hpp"
 #include "dem/run/run.hpp"
 
 #include "test_support.hpp"
@@ -39,14 +40,12 @@ TEST_CASE("A run writes the series CSV, the JSON summary with provenance, and VT
   const auto out = fresh_dir("outputs");
   const auto r = run("cases/impact/disk_wall.toml", out);
   REQUIRE(r.status == "completed");
-  // CSV: a comment with the case and code version, the header, the first row at t = 0, every 10th
-  // step, and the last row: 2000 steps / 10 + 1 rows.
+  // CSV: one header line with each column's unit (no comment: pandas.read_csv defaults read it), the
+  // first row at t = 0, every 10th step, and the last row: 2000 steps / 10 + 1 rows.
   std::ifstream csv(out / "series.csv");
   std::string line;
   std::getline(csv, line);
-  CHECK_THAT(line, Contains("# case:") && Contains("disk_wall.toml"));
-  std::getline(csv, line);
-  CHECK(line == "t,e0.y,e0.vy,e0.fn.floor");
+  CHECK(line == "t [s],e0.y [m],e0.vy [m/s],e0.fn.floor [N]");
   int rows = 0;
   while (std::getline(csv, line)) ++rows;
   CHECK(rows == 201);
@@ -57,8 +56,23 @@ TEST_CASE("A run writes the series CSV, the JSON summary with provenance, and VT
   CHECK(j["steps"] == 2000);
   for (const char* k : {"code_version", "build_type", "date", "machine"}) CHECK(j["provenance"].contains(k));
   CHECK(j["element_steps_per_second"].get<double>() > 0.0);
-  CHECK(j["resolved_case"]["numerics"]["dt"] == "1e-5 s");
-  CHECK(j["probes"]["e"].is_number());
+  CHECK(j["case_as_read"]["numerics"]["dt"] == "1e-5 s");  // the TOML after overrides, as written
+  CHECK(j["provenance"].contains("compiler"));
+  // the resolved case: SI numbers, every default filled in
+  const auto& rc = j["resolved_case"];
+  CHECK(rc["numerics"]["dt"].get<double>() == Approx(1e-5).epsilon(1e-15));
+  CHECK(rc["numerics"]["integrator"] == "K18");
+  CHECK(rc["numerics"]["velocity_start"] == "plain");
+  REQUIRE(rc["contacts"].size() == 1);
+  CHECK(rc["contacts"][0]["onset"] == "increment");
+  CHECK(rc["contacts"][0]["end_rule"] == "elastic");
+  CHECK(rc["contacts"][0]["kn"].is_number());
+  CHECK(rc["elements"]["total_mass"].get<double>() > 0.0);
+  CHECK(rc["output"]["series"][1]["unit"] == "m");
+  // every probe with its unit
+  CHECK(j["probes"]["e"]["value"].is_number());
+  CHECK(j["probes"]["e"]["unit"] == "1");
+  for (const auto& [name, p] : j["probes"].items()) CHECK_FALSE(p["unit"].get<std::string>().empty());
   // VTK: a first and a last snapshot, listed in the .pvd collection, with contact forces as cells.
   int snapshots = 0;
   for (const auto& f : fs::directory_iterator(out / "vtk")) snapshots += f.path().extension() == ".vtp";
@@ -176,4 +190,23 @@ TEST_CASE("Snapshots show the crack: each contact line carries its linked segmen
   CHECK(std::count_if(first.begin(), first.end(), [](int n) { return n > 1 && n < 5; }) == 0);  // intact early in the loading
   CHECK(std::count_if(last.begin(), last.end(), [](int n) { return n >= 1 && n < 5; }) >
         std::count_if(first.begin(), first.end(), [](int n) { return n >= 1 && n < 5; }));  // broken faces
+}
+
+TEST_CASE("Every quantity name has its SI unit for the series header and the probes", "[run][units]") {
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"t", "s"}, {"step", "1"}, {"contacts", "1"}, {"energy.kinetic", "J"}, {"energy.total", "J"},
+      {"mean_increment", "m"}, {"unbalanced_force_ratio", "1"}, {"e3.x", "m"}, {"e3.y", "m"}, {"e3.phi", "rad"},
+      {"e3.vx", "m/s"}, {"e3.vy", "m/s"}, {"e3.omega", "rad/s"}, {"e3.fx", "N"}, {"e3.fy", "N"}, {"e3.moment", "N*m"},
+      {"e3.px(1,-1)", "m"}, {"e0.py(0.5,-1)", "m"}, {"e0.gap.floor", "m"}, {"e0.gap.e1", "m"}, {"e0.fn.floor", "N"},
+      {"e0.fs.e2", "N"}, {"e0.links.floor", "1"}, {"floor.fx", "N"}, {"floor.fy", "N"}, {"floor.x", "m"},
+      {"floor.y", "m"}, {"plate_travel", "m"}, {"plate_dx", "m"}, {"plate_dy", "m"}, {"e0.corner_slide(38.5)", "m"}};
+  for (const auto& [name, unit] : expected) {
+    INFO(name);
+    CHECK(dem::quantity_unit(name) == unit);
+  }
+  CHECK(dem::quantity_unit("e0.colour") == "unknown");
+  CHECK(dem::series_header("e0.vy") == "e0.vy [m/s]");
+  CHECK(dem::series_column_name("e0.vy [m/s]") == "e0.vy");
+  CHECK(dem::series_column_name("e0.px(1,-1) [m]") == "e0.px(1,-1)");
+  CHECK(dem::series_column_name("t") == "t");
 }

@@ -1,6 +1,7 @@
 #include "engine/sensitivity.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <atomic>
 #include <cmath>
 #include <map>
@@ -255,6 +256,7 @@ nlohmann::json jnum(double x) { return std::isfinite(x) ? nlohmann::json(x) : nl
 }  // namespace
 
 StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
+  const auto started = std::chrono::steady_clock::now();
   const Sens s = read_sens(file);
   const std::size_t d = s.params.size(), no = s.outputs.size();
   const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
@@ -591,6 +593,12 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
       {"reference", s.function ? "exact indices of the test function (sensitivity_functions.hpp)" : "none: a sensitivity study"},
       {"setup", setup}, {"provenance", prov}, {"passed", passed}, {"checks", checks}, {"series", series},
       {"figures", figures}, {"tables", tables}};
+  // as a verification study's: wall time, the exact command, the README (the report shows them)
+  result["provenance"]["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  result["provenance"]["command"] = fmt::format("dem2d sweep {} --out {} --jobs {}{}", file.string(), out.string(), opt.jobs,
+                                                opt.use_cache ? "" : " --fresh");
+  if (const fs::path readme = fs::absolute(file).parent_path() / "README.md"; fs::exists(readme))
+    result["readme"] = dem::read_file(readme);
   dem::write_file_atomic(out / "result.json", result.dump(2) + "\n");
 
   if (opt.print) {

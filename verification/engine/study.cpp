@@ -21,6 +21,7 @@
 #include "dem/cases/units.hpp"
 #include "dem/run/interrupt.hpp"
 #include "dem/run/output_files.hpp"
+#include "dem/run/quantities.hpp"
 #include "engine/convergence.hpp"
 #include "engine/run_cache.hpp"
 #include "ref/registry.hpp"
@@ -895,10 +896,10 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
         std::vector<std::string> header;
         std::vector<double> xs, ys;
         while (std::getline(in, line)) {
-          if (line.empty() || line[0] == '#') continue;
+          if (line.empty()) continue;
           const std::vector<std::string> cells = dem::split_csv(line);
-          if (header.empty()) {
-            header = cells;
+          if (header.empty()) {  // "e0.y [m]": the quantity and its unit
+            for (const std::string& h : cells) header.push_back(dem::series_column_name(h));
             continue;
           }
           auto col = [&](const std::string& name) {

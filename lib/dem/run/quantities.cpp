@@ -194,4 +194,34 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
   throw bad("unknown quantity (see lib/dem/run/quantities.hpp for the names)");
 }
 
+std::string quantity_unit(const std::string& name) {
+  if (name == "t") return "s";
+  if (name == "step" || name == "contacts" || name == "unbalanced_force_ratio") return "1";
+  if (name.rfind("energy.", 0) == 0) return "J";
+  if (name == "mean_increment" || name == "plate_travel" || name == "plate_dx" || name == "plate_dy") return "m";
+  const auto p = split(name, '.');
+  if (p.size() >= 2 && p[1].rfind("corner_slide(", 0) == 0) return "m";
+  if (p.size() == 3) {  // e<i>.gap|fn|fs|links.<other>
+    if (p[1] == "gap") return "m";
+    if (p[1] == "fn" || p[1] == "fs") return "N";
+    if (p[1] == "links") return "1";
+  }
+  const std::string f = p.size() >= 2 ? name.substr(name.find('.') + 1) : std::string();
+  if (f == "x" || f == "y" || f.rfind("px(", 0) == 0 || f.rfind("py(", 0) == 0) return "m";
+  if (f == "phi") return "rad";
+  if (f == "vx" || f == "vy") return "m/s";
+  if (f == "omega") return "rad/s";
+  if (f == "fx" || f == "fy") return "N";
+  if (f == "moment") return "N*m";
+  return "unknown";  // a name compile_quantity accepts always has a unit above (tests/lib/run_tests.cpp)
+}
+
+std::string series_header(const std::string& name) { return name + " [" + quantity_unit(name) + "]"; }
+
+std::string series_column_name(const std::string& header_cell) {
+  const auto k = header_cell.rfind(" [");
+  if (k == std::string::npos || header_cell.empty() || header_cell.back() != ']') return header_cell;
+  return header_cell.substr(0, k);
+}
+
 }  // namespace dem

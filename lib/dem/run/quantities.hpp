@@ -35,4 +35,14 @@ double unbalanced_force_ratio(const Simulation& s);
 /// Compiles a quantity name against a model; throws std::invalid_argument naming what is wrong.
 QuantityFn compile_quantity(const std::string& name, const Model& m);
 
+/// The SI unit of a quantity name (one compile_quantity accepts): "s", "m", "N", "J", "rad", "m/s",
+/// "rad/s", "N*m", "1" (a count or a ratio); "unknown" for a name it does not know.
+std::string quantity_unit(const std::string& name);
+
+/// A series.csv header cell: the quantity and its unit, "e0.y [m]" (pandas reads it as one column name).
+std::string series_header(const std::string& name);
+
+/// The quantity name of a series.csv header cell: "e0.y [m]" → "e0.y" (a cell without a unit as is).
+std::string series_column_name(const std::string& header_cell);
+
 }  // namespace dem

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <toml++/impl/version.h>
 
 #include "dem/run/quantities.hpp"
 #include "dem/cases/text.hpp"
@@ -17,6 +18,7 @@
 #include "dem/run/checkpoint.hpp"
 #include "dem/run/interrupt.hpp"
 #include "dem/run/output_files.hpp"
+#include "dem/run/resolved_case.hpp"
 #include "dem/run/vtk_writer.hpp"
 #include "dem/run/picture/force_network.hpp"
 
@@ -27,6 +29,16 @@
 
 namespace dem {
 
+static std::string compiler() {
+#if defined(__clang__)
+  return "clang++ " __clang_version__;
+#elif defined(__GNUC__)
+  return "g++ " __VERSION__;
+#else
+  return "unknown compiler";
+#endif
+}
+
 nlohmann::json provenance() {
   char host[256] = {0};
   gethostname(host, sizeof host - 1);
@@ -34,7 +46,11 @@ nlohmann::json provenance() {
   char date[64];
   std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   return {{"code_version", DEM2D_VERSION}, {"build_type", DEM2D_BUILD_TYPE}, {"date", date}, {"machine", host},
-          {"compiler", fmt::format("g++ {}.{}", __GNUC__, __GNUC_MINOR__)}};
+          {"compiler", compiler()},
+          {"libraries", fmt::format("toml++ {}.{}.{}, nlohmann_json {}.{}.{}, fmt {}.{}.{}", TOML_LIB_MAJOR, TOML_LIB_MINOR,
+                                    TOML_LIB_PATCH, NLOHMANN_JSON_VERSION_MAJOR, NLOHMANN_JSON_VERSION_MINOR,
+                                    NLOHMANN_JSON_VERSION_PATCH, FMT_VERSION / 10000, FMT_VERSION / 100 % 100,
+                                    FMT_VERSION % 100)}};
 }
 
 namespace {
@@ -310,8 +326,10 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
                               .dump(2) + "\n");
     if (!series.empty()) {
       csv.open(opt.out_dir / "series.csv");
-      std::string head = "# case: " + c.path.string() + ", code " + provenance()["code_version"].get<std::string>() + "\n";
-      for (std::size_t k = 0; k < series.size(); ++k) head += (k ? "," : "") + csv_field(c.output.series[k]);
+      // one header line, each column with its unit ("t [s]"): pandas.read_csv reads it with its
+      // defaults; the case and the code version are in summary.json
+      std::string head;
+      for (std::size_t k = 0; k < series.size(); ++k) head += (k ? "," : "") + csv_field(series_header(c.output.series[k]));
       csv.write(head + "\n");
     }
     if (c.output.vtk) std::filesystem::create_directories(opt.out_dir / "vtk");
@@ -609,7 +627,10 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   }
 
   nlohmann::json probes_json = nlohmann::json::object();
-  for (const auto& [k, v] : res.probes) probes_json[k] = v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+  for (const ProbeSpec& s : c.probes) {  // each value with its SI unit
+    const auto& v = res.probes.at(s.name);
+    probes_json[s.name] = {{"value", v ? nlohmann::json(*v) : nlohmann::json(nullptr)}, {"unit", probe_unit(s)}};
+  }
   const Energies en = sim.energies();
   res.summary = {
       {"case", c.path.string()},
@@ -631,7 +652,10 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       {"element_steps_per_second", res.element_steps_per_second},
       {"energies", {{"kinetic", en.kinetic}, {"potential", en.potential}, {"elastic", en.elastic}}},
       {"probes", probes_json},
-      {"resolved_case", c.resolved},
+      {"units", {{"time", "s"}, {"dt", "s"}, {"stability_limit", "s"}, {"wall_seconds", "s"},
+                 {"element_steps_per_second", "1/s"}, {"energies", "J"}}},
+      {"case_as_read", c.resolved},
+      {"resolved_case", resolved_case_si(c)},
   };
   res.summary["case_hash"] = case_hash(c);
   if (!pictures.empty()) {

@@ -1,0 +1,63 @@
+// The report's citations link to the project's own docs/ rendered into the page (reports/cited_docs.hpp).
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "cited_docs.hpp"
+
+namespace {
+
+const report::CitedDocs& real_docs() {
+  static const report::CitedDocs d = report::render_cited_docs(std::string(DEM2D_SOURCE_DIR) + "/docs");
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("The repository's docs render with an anchor per section, equation label and finding", "[report][docs]") {
+  const auto& d = real_docs();
+  REQUIRE_FALSE(d.html.empty());
+  CHECK(report::citation_anchor(d, "references 1.6") == "doc-references-1-6");
+  CHECK(report::citation_anchor(d, "references 1.6.9") == "doc-references-1-6");  // falls back to the parent
+  CHECK(report::citation_anchor(d, "model 2") == "doc-model-2");
+  CHECK(report::citation_anchor(d, "K19") == "doc-model-K19");
+  CHECK(report::citation_anchor(d, "K22.a") != "");
+  CHECK(report::citation_anchor(d, "M15.1") == "doc-model-M15-1");
+  CHECK(report::citation_anchor(d, "F F1") == "doc-findings-F1");
+  CHECK(report::citation_anchor(d, "F K-3") == "doc-findings-K-3");
+  CHECK(report::citation_anchor(d, "doc findings") == "doc-findings");
+  // every anchor a citation can resolve to exists in the page once
+  for (const auto& [key, id] : d.anchors) {
+    const std::string attr = "id=\"" + id + "\"";
+    const auto first = d.html.find(attr);
+    CHECK(first != std::string::npos);
+    CHECK(d.html.find(attr, first + 1) == std::string::npos);
+  }
+  // every equation label of both papers has an anchor (K1–K28, M1–M26)
+  for (const auto& [paper, last] : {std::pair<char, int>{'K', 28}, std::pair<char, int>{'M', 26}})
+    for (int k = 1; k <= last; ++k) {
+      std::string label(1, paper);
+      label += std::to_string(k);
+      INFO(label);
+      CHECK(report::citation_anchor(d, label) != "");
+    }
+}
+
+TEST_CASE("Citations in text are linked, not inside tags, links, figures or unknown labels", "[report][docs]") {
+  const auto& d = real_docs();
+  const std::string page =
+      "<p>tolerance from refs §1.6 and (K19); M15.1 linearised; see findings F2 and docs/findings.md.</p>"
+      "<p>closed forms of docs/references.md §1.2</p>"
+      "<p title=\"refs §1.6\">K99 and M27 are no labels; M-A is a case</p>"
+      "<svg><text>K19</text></svg><a href=\"x\">refs §2</a>";
+  const std::string out = report::link_citations(page, d);
+  CHECK(out.find("<a class=\"cite\" href=\"#doc-references-1-6\">refs §1.6</a>") != std::string::npos);
+  CHECK(out.find("(<a class=\"cite\" href=\"#doc-model-K19\">K19</a>)") != std::string::npos);
+  CHECK(out.find("<a class=\"cite\" href=\"#doc-model-M15-1\">M15.1</a>") != std::string::npos);
+  CHECK(out.find("href=\"#doc-findings-F2\">findings F2</a>") != std::string::npos);
+  CHECK(out.find("href=\"#doc-findings\">docs/findings.md</a>") != std::string::npos);
+  CHECK(out.find("href=\"#doc-references-1-2\">docs/references.md §1.2</a>") != std::string::npos);
+  CHECK(out.find("<p title=\"refs §1.6\">K99 and M27 are no labels; M-A is a case</p>") != std::string::npos);
+  CHECK(out.find("<svg><text>K19</text></svg><a href=\"x\">refs §2</a>") != std::string::npos);
+  // without docs nothing changes
+  CHECK(report::link_citations(page, report::CitedDocs{}) == page);
+}

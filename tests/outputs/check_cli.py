@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""`dem2d --version` and `dem2d check` (issue 12): the version line names the code version, build type and
+compiler; check prints every resolved default (integrator, velocity start, per contact law the
+increments, segment positions, end rule, onset), the total mass and what limits the time step, in
+words; a wrong case fails with exit status 2. Usage: check_cli.py DEM2D_EXECUTABLE SOURCE_DIR."""
+import re
+import subprocess
+import sys
+
+exe, src = sys.argv[1], sys.argv[2]
+fails = []
+
+
+def run(*args):
+    return subprocess.run([exe, *args], cwd=src, capture_output=True, text=True)
+
+
+v = run("--version")
+if v.returncode != 0 or not re.fullmatch(r"dem2d \S+ \(\S+ build, (g\+\+|clang\+\+) [0-9][^)]*\)\n", v.stdout):
+    fails.append(f"--version: exit {v.returncode}, printed {v.stdout!r}")
+
+want = {
+    "cases/impact/disk_wall.toml": [
+        r"integrator K18 \(du = v dt, K18\), velocity start plain",
+        r"total mass [0-9.e+-]+ kg",
+        r"contact \S+: linear law, kn = [0-9.e+-]+ N/m, .*end rule elastic \(opens when e_n < 0, K8\), onset increment",
+        r"probe e: restitution \[1\]",
+        r"probe tc: contact_duration \[s\]",
+        r"what limits it: the fastest mode of element 0 \(a disk .* pressed by 0 element and 1 wall contact",
+        r"K18 \(symplectic Euler\) loses stability",
+    ],
+    "cases/pre/block_on_slope.toml": [
+        r"contact \S+: face law, [0-9] segment\(s\) at the (segment centres \(M13.1\)|face ends \(M13.2\)), "
+        r"normal increment (exact|linearised), tangential increment (exact|literal|linearised|hisatake), onset (increment|overlap)",
+        r"what limits it: .*PRE",
+    ],
+}
+for case, patterns in want.items():
+    r = run("check", case)
+    if r.returncode != 0:
+        fails.append(f"check {case}: exit {r.returncode}: {r.stderr}")
+        continue
+    for p in patterns:
+        if not re.search(p, r.stdout):
+            fails.append(f"check {case}: no line matches {p!r}")
+
+bad = run("check", "cases/impact/disk_wall.toml", "--set", "numerics.integrator=K20")
+if bad.returncode != 2 or "numerics.integrator" not in bad.stderr:
+    fails.append(f"check with integrator K20: exit {bad.returncode}, stderr {bad.stderr!r} (expected 2 naming the key)")
+
+if fails:
+    sys.exit("FAIL:\n  " + "\n  ".join(fails))
+print("OK:", v.stdout.strip())
