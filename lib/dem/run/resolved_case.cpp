@@ -170,7 +170,11 @@ nlohmann::json resolved_case_si(const Case& c) {
                        {"friction", m.base_plate.friction}};
   nlohmann::json series = nlohmann::json::array();
   for (const std::string& s : c.output.series) series.push_back({{"quantity", s}, {"unit", quantity_unit(s)}});
-  j["output"] = {{"every", c.output.every}, {"series", series}, {"vtk", c.output.vtk}, {"vtk_every", c.output.vtk_every}};
+  j["output"] = {{"every", c.output.every}, {"series", series}, {"vtk", c.output.vtk}, {"vtk_every", c.output.vtk_every},
+                 {"pictures", c.output.pictures}, {"picture_every", c.output.picture_every},
+                 {"picture_times", c.output.picture_times}, {"picture_width", c.output.picture_width},
+                 {"picture_max_force", c.output.picture_max_force ? nlohmann::json(*c.output.picture_max_force)
+                                                                  : nlohmann::json(nullptr)}};
   const StopSpec& st = c.stop;
   nlohmann::json stop = {{"settle_window", st.settle_window}, {"settle_min_time", st.settle_min_time}};
   stop["settled_increment"] = st.settled_increment ? nlohmann::json(*st.settled_increment) : nlohmann::json(nullptr);
