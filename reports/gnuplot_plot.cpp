@@ -32,9 +32,15 @@ bool drawable(double x, double y, bool logx, bool logy) {
 constexpr int dash_types[] = {1, 2, 3, 4, 5};
 constexpr int point_types[] = {7, 5, 9, 13, 6, 4, 8, 12};
 
-std::string with_clause(const Curve& curve, std::size_t index) {
+// Reference curves are black; several in one figure (e.g. Bray & Goodman and the PRE model's rigid
+// block) get successive dash patterns: dashed, dash-dot, dotted, ...
+constexpr int reference_dash_types[] = {2, 4, 3, 5};
+
+std::string with_clause(const Curve& curve, std::size_t index, std::size_t reference_index = 0) {
   if (curve.dashed) return "with lines dt 2 lw 1.5 lc rgb '#555555'";
-  if (curve.style == "reference") return "with lines dt 2 lw 2.5 lc rgb '#000000'";
+  if (curve.style == "reference")
+    return fmt::format("with lines dt {} lw 2.5 lc rgb '#000000'",
+                       reference_dash_types[reference_index % std::size(reference_dash_types)]);
   if (curve.style == "band") return "with lines dt 3 lw 1.5 lc rgb '#a40e26'";
   const int dt = dash_types[index % std::size(dash_types)];
   const int pt = point_types[index % std::size(point_types)];
@@ -187,7 +193,7 @@ std::string gnuplot_script(const Plot& plot, const std::filesystem::path& svg_fi
   if (plot.yrange.size() == 2) s += fmt::format("set yrange [{:.17g}:{:.17g}]\n", plot.yrange[0], plot.yrange[1]);
 
   std::vector<std::string> plot_items;
-  std::size_t colour = 0;
+  std::size_t colour = 0, references = 0;
   for (std::size_t c = 0; c < plot.curves.size(); ++c) {
     const Curve& curve = plot.curves[c];
     if (drawable_points(curve, plot.logx, plot.logy) == 0) continue;
@@ -197,7 +203,7 @@ std::string gnuplot_script(const Plot& plot, const std::filesystem::path& svg_fi
       if (drawable(curve.x[i], curve.y[i], plot.logx, plot.logy))
         s += fmt::format("{:.17g} {:.17g}\n", curve.x[i], curve.y[i]);
     s += "EOD\n";
-    std::string item = block + " using 1:2 " + with_clause(curve, colour);
+    std::string item = block + " using 1:2 " + with_clause(curve, colour, curve.style == "reference" ? references++ : 0);
     if (!curve.colour.empty())
       item += " lc rgb '" + gnuplot_label(curve.colour) + "'";
     else if (!curve.dashed && curve.style != "reference" && curve.style != "band")

@@ -299,3 +299,18 @@ TEST_CASE("a narrow linear range gets enough tick digits that neighbours differ"
   CHECK(script.find("set format y '%.11g'") != std::string::npos);
   CHECK(script.find("set format x") == std::string::npos);
 }
+
+TEST_CASE("several reference curves in one figure get distinct dash patterns, one reference keeps its dashes", "[report]") {
+  report::Plot plot;
+  plot.title = "Fig. 9";
+  report::Curve dem{"DEM", {0.0, 1.0}, {0.0, 1.0}, "lines"};
+  report::Curve bg{"Bray and Goodman", {0.0, 1.0}, {0.0, 1.1}, "reference"};
+  report::Curve pre{"PRE model", {0.0, 1.0}, {0.0, 1.05}, "reference"};
+  plot.curves = {dem, bg};
+  const std::string one = report::gnuplot_script(plot, "one.svg");
+  CHECK(one.find("with lines dt 2 lw 2.5 lc rgb '#000000' title 'Bray and Goodman'") != std::string::npos);
+  plot.curves = {dem, bg, pre};
+  const std::string two = report::gnuplot_script(plot, "two.svg");
+  CHECK(two.find("with lines dt 2 lw 2.5 lc rgb '#000000' title 'Bray and Goodman'") != std::string::npos);
+  CHECK(two.find("with lines dt 4 lw 2.5 lc rgb '#000000' title 'PRE model'") != std::string::npos);
+}
