@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 #include "ref/require.hpp"
 
@@ -291,8 +292,13 @@ LatticeBeamResponse solve_lattice_beam(const LatticeBeamModel& m, double tensile
   }
   const int n_springs = m.segments;
   for (int first : face_normals)
-    for (int i = 0; i < n_springs; ++i)
-      out.max_segment_tension = std::max(out.max_segment_tension, net.spring_force(u, first + 2 * i));
+    for (int i = 0; i < n_springs; ++i) {
+      const double f = net.spring_force(u, first + 2 * i);
+      if (f > out.max_segment_tension) {
+        out.max_segment_tension = f;
+        std::tie(out.max_tension_x, out.max_tension_y) = net.spring_point(first + 2 * i);
+      }
+    }
   out.max_contact_tension = -1e300;
   for (const Contact& k : contacts) {
     const double fn_ = net.spring_force(u, k.normal);  // tension > 0

@@ -20,6 +20,8 @@
 // The stiffness matrix is K = Σ k bᵀb over the springs, b the row that maps the 6 DOF of the two
 // bodies to the spring's extension; it is solved with Eigen's sparse LDLᵀ (SimplicialLDLT). Bodies
 // held fixed (the supports) are ground and carry no DOF.
+// With N = 1 (segment centres) a face has no moment lever and its shear spring sees r(θ₁ + θ₂), so
+// elements turning by ±θ in a checkerboard strain nothing: the static problem is singular (throws).
 // Accuracy: a direct solve; relative error ~ condition number × 1e-16 (≤ 1e-9 for the lattices here,
 // checked by the residual in the tests).
 
@@ -51,6 +53,10 @@ class RigidSpringNetwork {
   std::vector<double> solve() const;
 
   double extension(const std::vector<double>& u, int spring) const;
+  std::pair<double, double> spring_point(int spring) const {
+    const Spring& s = springs_.at(static_cast<std::size_t>(spring));
+    return {s.px, s.py};
+  }
   double spring_force(const std::vector<double>& u, int spring) const;  // k × extension, tension > 0
   double energy(const std::vector<double>& u) const;                    // Σ ½ k e²
   // The y (or x) displacement of the body point at (px, py) in the undeformed configuration.
@@ -99,6 +105,7 @@ struct LatticeBeamResponse {
   double stiffness = 0.0;             // P/δ, δ the downward displacement of the deflection point [N/m]
   double support_settlement = 0.0;    // downward displacement of the support cores' bottom, per unit P [m/N]
   double max_segment_tension = 0.0;   // largest face normal spring tension per unit P [1]
+  double max_tension_x = 0.0, max_tension_y = 0.0;  // where that spring sits [m]
   double first_crack_load = 0.0;      // P at which that spring reaches σ_t A/N (set by first_crack) [N]
   double max_contact_tension = 0.0;   // largest disk-contact normal tension per unit P (must be ≤ 0) [1]
   double max_contact_friction = 0.0;  // largest |tangential|/normal force over the disk contacts [1]

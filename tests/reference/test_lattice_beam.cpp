@@ -180,6 +180,9 @@ TEST_CASE("Lattice: the M-D beam, frictionless, against beam theory and the firs
     CHECK_THAT(out.stiffness / 1e6, WithinRel(row.stiffness_kN_mm, 1e-4));
     CHECK_THAT(out.first_crack_load / ref::flexural_peak_load(prism, 5.6e6), WithinRel(row.first_crack_ratio, 1e-4));
     CHECK(out.residual < 1e-12);
+    // The first link to break is the outermost bottom spring of the mid-span face (x = 0, y = r/N).
+    CHECK_THAT(out.max_tension_x, WithinAbs(0.0, 1e-12));
+    CHECK_THAT(out.max_tension_y, WithinRel(0.020 / row.rows / 5, 1e-9));
     CHECK(out.max_contact_tension < 0.0);  // every disk contact stays in compression
     // Vertical supports: the support core settles by P/(2 k_c) exactly.
     CHECK_THAT(out.support_settlement, WithinRel(1.0 / (2 * 172e6), 1e-9));
@@ -225,4 +228,14 @@ TEST_CASE("Lattice: the registry entries equal the direct calls", "[lattice_beam
   auto odd = args;
   odd["n_l"] = 23;
   CHECK_THROWS_AS(ref::evaluate("beam.lattice_exact_stiffness", odd), std::invalid_argument);
+}
+
+TEST_CASE("Lattice: with N = 1 the lattice has a zero-energy mode (alternating rotations)", "[lattice_beam]") {
+  // One spring per face has no moment lever, and the shear spring sees r(θ₁ + θ₂): elements turning
+  // by ±θ in a checkerboard strain nothing. The static problem is singular.
+  auto m = md_beam(2, false);
+  m.segments = 1;
+  CHECK_THROWS_AS(ref::solve_lattice_beam(m), std::invalid_argument);
+  m.segments = 2;
+  CHECK_NOTHROW(ref::solve_lattice_beam(m));
 }
