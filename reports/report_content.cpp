@@ -245,9 +245,15 @@ std::vector<std::vector<std::string>> series_level_rows(const nlohmann::json& se
   auto at = [](const std::vector<std::optional<double>>& v, std::size_t k) {
     return k < v.size() ? format_number(v[k]) : std::string(missing_value);
   };
+  // Levels declared as [[level]] tables carry their labels ("1x3", ...); otherwise the index.
+  const nlohmann::json* labels = series.is_object() && series.contains("level_labels") ? &series["level_labels"] : nullptr;
+  auto name = [&](std::size_t k) {
+    if (labels && labels->is_array() && k < labels->size() && (*labels)[k].is_string()) return (*labels)[k].get<std::string>();
+    return std::to_string(k);
+  };
   std::vector<std::vector<std::string>> rows;
   for (std::size_t k = 0; k < h.size(); ++k)
-    rows.push_back({std::to_string(k), at(h, k), at(value, k), at(error, k), at(order, k)});
+    rows.push_back({name(k), at(h, k), at(value, k), at(error, k), at(order, k)});
   return rows;
 }
 

@@ -22,6 +22,7 @@
 #include "dem/run/interrupt.hpp"
 #include "dem/run/output_files.hpp"
 #include "engine/convergence.hpp"
+#include "engine/refinement_levels.hpp"
 #include "engine/run_cache.hpp"
 #include "ref/registry.hpp"
 
@@ -57,6 +58,9 @@ struct Check {
   bool compare_richardson = false;  // refinement: analyse without the reference, then compare the
                                     // Richardson extrapolation (not the finest level) with it
   Trend trend = Trend::none;        // a trend across the listed variants (in their order), no pinned value
+  bool compare_each = false;        // refinement: every level against its own reference (level args), no order
+  std::optional<double> assumed_order;  // refinement: Richardson/GCI with this order, not the observed one
+  std::uint32_t line = 0;           // of the [[check]] in the study file
 };
 
 /// A figure from the time series of runs (the finest level of each listed variant), with an
@@ -78,6 +82,7 @@ struct Figure {
   std::int64_t reference_points = 0;
   bool reference_per_variant = false;  // series figure: one reference curve per variant (its own args)  // > 1: the reference on a uniform grid of x_arg over the group's span
   std::map<std::string, std::string> curve_labels;  // legend words per series quantity / solver
+  std::vector<std::string> solvers;  // time-series figure: every reference solver (solver = the first)
 };
 
 /// A table of probe values across variants: rows = variants (columns = the probes), or a pivot with
@@ -94,8 +99,7 @@ struct Study {
   Kind kind = Kind::single;
   std::vector<std::string> set;
   std::vector<Variant> variants;
-  std::vector<double> values;       // refinement levels, coarse → fine
-  bool inverse = false;             // h = 1/value (refining by raising N or an element count)
+  Refinement refinement;            // kind = refinement: the levels, coarse → fine (refinement_levels.hpp)
   double low = 0.0, high = 0.0, rel_tol = 1e-4;  // stability bisection
   std::vector<Check> checks;
   std::vector<Figure> figures;
@@ -204,27 +208,13 @@ Study read_study(const fs::path& file) {
   }
   if (s.variants.empty()) s.variants.push_back({});
   if (s.kind == Kind::refinement) {
-    const toml::table* r = root["refinement"].as_table();
-    if (!r) fail(s, "refinement", "missing [refinement] table for kind = \"refinement\"");
-    s.parameter = (*r)["parameter"].value_or(std::string());
-    s.parameter_label = (*r)["label"].value_or(s.parameter);
-    if (s.parameter.empty()) fail(s, "refinement.parameter", "missing: the case key to refine, e.g. numerics.dt");
-    if (const toml::array* a = (*r)["values"].as_array()) {
-      for (const auto& x : *a) s.values.push_back(number_or_quantity(s, x, "refinement.values"));
-    } else {
-      const toml::node* b = r->get("base");
-      if (!b) fail(s, "refinement", "give values = [...] or base, ratio, levels");
-      const double base = number_or_quantity(s, *b, "refinement.base");
-      const double ratio = (*r)["ratio"].value_or(2.0);
-      const auto levels = (*r)["levels"].value_or(int64_t{4});
-      if (ratio <= 1.0 || levels < 2) fail(s, "refinement", "need ratio > 1 and levels >= 2");
-      for (int64_t k = 0; k < levels; ++k) s.values.push_back(base / std::pow(ratio, static_cast<double>(k)));
-    }
-    if (s.values.size() < 2) fail(s, "refinement.values", "need at least two levels");
-    const std::string hk = (*r)["h"].value_or(std::string("value"));
-    if (hk != "value" && hk != "inverse") fail(s, "refinement.h", "expected \"value\" (h = the parameter, e.g. Δt) or \"inverse\" (h = 1/parameter, e.g. N)");
-    s.inverse = hk == "inverse";
-  } else if (s.kind == Kind::stability) {
+    s.refinement = read_refinement(root, file.string());
+    s.parameter = s.refinement.parameter;
+    s.parameter_label = s.refinement.label;
+  } else {
+    refuse_levels(root, file.string());
+  }
+  if (s.kind == Kind::stability) {
     const toml::table* r = root["stability"].as_table();
     if (!r) fail(s, "stability", "missing [stability] table for kind = \"stability\"");
     s.parameter = (*r)["parameter"].value_or(std::string("numerics.dt"));
@@ -266,6 +256,7 @@ Study read_study(const fs::path& file) {
     const toml::table* t = n.as_table();
     if (!t) fail_at(s, n, "check", "expected [[check]] tables (a table per check), got a value");
     Check c;
+    c.line = n.source().begin.line;
     c.probe = (*t)["probe"].value_or(std::string(s.kind == Kind::stability ? "limit" : s.kind == Kind::mode_map ? "mismatches" : ""));
     if (c.probe.empty()) fail(s, "check.probe", "missing: the probe of the case to check");
     c.label = (*t)["label"].value_or(c.probe);
@@ -300,8 +291,22 @@ Study read_study(const fs::path& file) {
     const std::string ex = (*t)["expect"].value_or(std::string("within"));
     c.expect = ex == "above" ? Expect::above : ex == "below" ? Expect::below : Expect::within;
     const std::string cmp = (*t)["compare"].value_or(std::string("finest"));
-    if (cmp != "finest" && cmp != "richardson") fail(s, "check.compare", "expected \"finest\" or \"richardson\"");
+    if (cmp != "finest" && cmp != "richardson" && cmp != "each")
+      fail_at(s, *t->get("compare"), "check.compare", fmt::format("expected \"finest\", \"richardson\" or \"each\", got \"{}\"", cmp));
     c.compare_richardson = cmp == "richardson";
+    c.compare_each = cmp == "each";
+    if ((c.compare_richardson || c.compare_each) && s.kind != Kind::refinement)
+      fail_at(s, *t->get("compare"), "check.compare", fmt::format("compare = \"{}\" needs kind = \"refinement\"", cmp));
+    if (c.compare_each && (c.expected_order || c.trend != Trend::none))
+      fail_at(s, *t->get("compare"), "check.compare", "compare = \"each\" checks values, not an order or a trend: remove expected_order / trend");
+    if (c.compare_each && c.solver.empty() && !c.value)
+      fail_at(s, *t->get("compare"), "check.compare", "compare = \"each\" needs a reference solver or a value");
+    if (const toml::node* ao = t->get("assumed_order")) {
+      const auto p = ao->value<double>();
+      if (!p || !(*p > 0.0)) fail_at(s, *ao, "check.assumed_order", "expected a positive number (the order Richardson uses)");
+      if (s.kind != Kind::refinement) fail_at(s, *ao, "check.assumed_order", "needs kind = \"refinement\"");
+      c.assumed_order = *p;
+    }
     s.checks.push_back(c);
   }
   if (root.get("figure") && !root["figure"].as_array())
@@ -323,7 +328,23 @@ Study read_study(const fs::path& file) {
       f.ref_scale = (*t)["reference_scale"].value_or(1.0);
       f.y_from_start = (*t)["y_from_start"].value_or(false);
       f.every = (*t)["every"].value_or(int64_t{100});
-      f.solver = (*t)["reference"].value_or(std::string());
+      // reference = "solver" or, for a time-series figure, ["solver", "another solver", ...]
+      if (const toml::node* rn = t->get("reference")) {
+        if (auto one = rn->value_exact<std::string>()) {
+          f.solvers.push_back(*one);
+        } else if (const toml::array* ra = rn->as_array(); ra && !ra->empty()) {
+          for (const auto& x : *ra) {
+            auto name = x.value_exact<std::string>();
+            if (!name || name->empty()) fail_at(s, x, "figure.reference", "expected a solver name or an array of solver names");
+            f.solvers.push_back(*name);
+          }
+        } else {
+          fail_at(s, *rn, "figure.reference", "expected a solver name or an array of solver names");
+        }
+        if (f.solvers.size() > 1 && (t->get("probe") || (*t)["y_minus_reference"].value_or(false)))
+          fail_at(s, *rn, "figure.reference", "several references need a time-series figure without y_minus_reference");
+        f.solver = f.solvers.front();
+      }
       f.x_arg = (*t)["x_arg"].value_or(std::string("t"));
       f.args = args_of(s, *t, "args");
       f.variants = strings(s, *t, "variants");
@@ -444,10 +465,15 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
 
   nlohmann::json checks = nlohmann::json::array(), series_json = nlohmann::json::array();
   bool passed = true;
-  auto reference_of = [&](const Check& c, const Variant& v, double param) -> std::optional<double> {
+  // The reference of a check for a variant: the solver at the variant's arguments, over them a
+  // refinement level's (if given), over those the check's own.
+  auto reference_of = [&](const Check& c, const Variant& v, double param,
+                          const RefinementLevel* level = nullptr) -> std::optional<double> {
     if (c.value) return c.value;
     if (c.solver.empty()) return std::nullopt;
     std::map<std::string, double> args = v.args;
+    if (level)
+      for (const auto& [k, x] : level->args) args[k] = x;
     for (const auto& [k, x] : c.args) args[k] = x;
     // Only the arguments the solver takes: variant args may serve several solvers.
     std::map<std::string, double> use;
@@ -490,6 +516,26 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
                       {"passed", ok}, {"note", note}});
   };
   auto label = [](const Check& c, const Variant& v) { return v.label.empty() ? c.label : fmt::format("{}, {}", c.label, v.label); };
+  const std::vector<RefinementLevel>& levels = s.refinement.levels;
+  // [[level]] form: a check compared at the finest level (or by Richardson) needs ONE reference for
+  // the whole sequence; a reference that moves with the level's arguments is refused before anything
+  // runs (compare = "each" checks every level against its own).
+  if (s.kind == Kind::refinement && s.refinement.declared_levels)
+    for (const Check& c : s.checks) {
+      if (c.compare_each || c.solver.empty()) continue;
+      for (const Variant& v : s.variants) {
+        if (!applies(c, v)) continue;
+        const std::optional<double> finest = reference_of(c, v, levels.back().value, &levels.back());
+        for (const RefinementLevel& l : levels) {
+          const std::optional<double> r = reference_of(c, v, l.value, &l);
+          if (r && finest && std::abs(*r - *finest) > 1e-12 * std::max(1.0, std::abs(*finest)))
+            throw std::runtime_error(fmt::format("{}:{}: check.compare: {}", s.file.string(), c.line,
+                 fmt::format("check \"{}\": the reference {} is {:.10g} at level \"{}\" but {:.10g} at the finest level: "
+                             "a convergence series needs one reference (compare = \"each\" checks every level "
+                             "against its own)", c.label, c.solver, *r, l.label, *finest)));
+        }
+      }
+    }
 
   double speed_sum = 0.0;
   std::size_t speed_n = 0;
@@ -501,17 +547,13 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   nlohmann::json s_tables = nlohmann::json::array(), s_setup_extra = nlohmann::json::object();
   nlohmann::json mode_chart;  // mode_map: the coloured chart (first figure)
   if (s.kind == Kind::single || s.kind == Kind::refinement) {
-    const std::size_t nl = s.kind == Kind::single ? 1 : s.values.size();
+    const std::size_t nl = s.kind == Kind::single ? 1 : levels.size();
     std::vector<RunOut> runs(s.variants.size() * nl);
     parallel_for(runs.size(), opt.jobs, [&](std::size_t k) {
       const Variant& v = s.variants[k / nl];
       std::vector<std::string> sets = s.set;
       sets.insert(sets.end(), v.set.begin(), v.set.end());
-      if (s.kind == Kind::refinement) {
-        const double v = s.values[k % nl];
-        sets.push_back(v == std::floor(v) && std::abs(v) < 1e15 ? fmt::format("{}={}", s.parameter, static_cast<long long>(v))
-                                                               : fmt::format("{}={:.17g}", s.parameter, v));
-      }
+      if (s.kind == Kind::refinement) sets.insert(sets.end(), levels[k % nl].set.begin(), levels[k % nl].set.end());
       fs::path run_dir;
       if (k % nl == nl - 1) {  // the finest level feeds the figures
         std::vector<std::string> q;
@@ -543,7 +585,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
     csv << "\n";
     for (std::size_t k = 0; k < runs.size(); ++k) {
       csv << '"' << s.variants[k / nl].label << "\"," << k % nl << ","
-          << (s.kind == Kind::refinement ? fmt::format("{:.17g}", s.values[k % nl]) : "") << "," << runs[k].status;
+          << (s.kind == Kind::refinement ? fmt::format("{:.17g}", levels[k % nl].value) : "") << "," << runs[k].status;
       for (const auto& c : s.checks) csv << "," << fmt_value(runs[k].probes.count(c.probe) ? runs[k].probes[c.probe] : std::nullopt);
       csv << "\n";
     }
@@ -569,7 +611,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
           }
           std::optional<double> dist;
           if (c.trend == Trend::toward_reference) {
-            last_ref = reference_of(c, v, s.kind == Kind::refinement ? s.values.back() : 0.0);
+            last_ref = s.kind == Kind::refinement ? reference_of(c, v, levels.back().value, &levels.back()) : reference_of(c, v, 0.0);
             if (!last_ref) fail(s, "check.reference", fmt::format("check \"{}\": toward_reference needs a reference", c.label));
             dist = std::abs(*x - *last_ref);
             if (c.relative) *dist /= std::abs(*last_ref);
@@ -603,34 +645,45 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
         const RunOut& finest = runs[vi * nl + nl - 1];
         if (!finest.probes.count(c.probe))
           fail(s, "check.probe", fmt::format("the case has no probe \"{}\"", c.probe));
-        const std::optional<double> ref = reference_of(c, v, s.kind == Kind::refinement ? s.values.back() : 0.0);
+        const std::optional<double> ref =
+            s.kind == Kind::refinement ? reference_of(c, v, levels.back().value, &levels.back()) : reference_of(c, v, 0.0);
         std::string note = finest.status == "blow-up" ? "blow-up: " + finest.message : "";
         if (s.kind == Kind::single) {
           add_check(label(c, v), ref, finest.probes.at(c.probe), c, std::nullopt, note);
           continue;
         }
-        std::vector<double> h, q;
-        for (std::size_t l = 0; l < nl; ++l) {
-          const auto& p = runs[vi * nl + l].probes.at(c.probe);
-          if (!p) continue;
-          h.push_back(s.inverse ? 1.0 / s.values[l] : s.values[l]);
-          q.push_back(*p);
+        if (c.compare_each) {  // every level against its own reference (the level's arguments)
+          for (std::size_t l = 0; l < nl; ++l) {
+            const RunOut& run = runs[vi * nl + l];
+            const std::string where = levels[l].label.empty() ? fmt::format("level {}", l) : levels[l].label;
+            add_check(fmt::format("{} [{}]", label(c, v), where), reference_of(c, v, levels[l].value, &levels[l]),
+                      run.probes.at(c.probe), c, std::nullopt, run.status == "blow-up" ? "blow-up: " + run.message : "");
+          }
+          continue;
         }
+        std::vector<std::optional<double>> q;
+        for (std::size_t l = 0; l < nl; ++l) q.push_back(runs[vi * nl + l].probes.at(c.probe));
+        const std::size_t given = static_cast<std::size_t>(std::count_if(q.begin(), q.end(), [](const auto& x) { return x.has_value(); }));
         std::optional<double> order;
-        if (h.size() >= 2) {
+        if (given >= 2) {
           ConvergenceOptions co;
           if (!c.compare_richardson) co.reference = ref;
           co.expected_order = c.expected_order;
+          co.assumed_order = c.assumed_order;
           co.fit_levels = c.fit_levels;
-          Series ser = analyse_convergence(h, q, co, label(c, v), s.parameter_label);
-          order = c.compare_richardson && h.size() >= 3 ? ser.three_level_order : ser.fitted_order;
-          series_json.push_back(to_json(ser));
+          std::vector<std::string> level_labels;
+          Series ser = analyse_levels(s.refinement, q, co, label(c, v), &level_labels);
+          order = c.compare_richardson && given >= 3 ? ser.three_level_order : ser.fitted_order;
+          nlohmann::json sj = to_json(ser);
+          if (s.refinement.declared_levels) sj["level_labels"] = level_labels;  // the report names the levels
+          series_json.push_back(sj);
           if (c.compare_richardson) {
             note += fmt::format(" Richardson extrapolation compared (GCI of the finest level {})", fmt_value(ser.gci_fine));
+            if (c.assumed_order) note += fmt::format(" with the assumed order {:g}", *c.assumed_order);
             add_check(label(c, v) + " (Richardson)", ref, ser.richardson, c, order, note);
             continue;
           }
-          if (h.size() < nl) note += fmt::format(" {} of {} levels gave no value", nl - h.size(), nl);
+          if (given < nl) note += fmt::format(" {} of {} levels gave no value", nl - given, nl);
         } else {
           note += " fewer than two levels gave a value";
         }
@@ -886,6 +939,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
     } else {
       std::vector<double> ref_x;
       std::map<std::string, double> ref_args = f.args;
+      std::map<std::string, std::vector<std::map<std::string, double>>> drawn_references;  // per solver: its arguments
       for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
         const Variant& v = s.variants[vi];
         if (!listed(f.variants, v.label)) continue;
@@ -930,35 +984,47 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
         }
         const std::string name = v.label.empty() ? std::string("DEM") : "DEM " + v.label;
         curves.push_back({{"label", words(f, v.label, name)}, {"x", px}, {"y", py}, {"style", "lines"}});
-        if (f.reference_per_variant && !f.solver.empty() && !f.y_minus_reference) {
-          std::vector<double> rx, ry, grid = xs;
-          if (f.reference_points > 1 && !xs.empty()) {  // a uniform grid over the variant's span (a costly solver)
-            const auto [lo, hi] = std::minmax_element(xs.begin(), xs.end());
-            grid.clear();
-            for (std::int64_t k = 0; k < f.reference_points; ++k)
-              grid.push_back(*lo + (*hi - *lo) * static_cast<double>(k) / static_cast<double>(f.reference_points - 1));
+        if (f.reference_per_variant && !f.y_minus_reference)
+          for (const std::string& solver : f.solvers) {
+            std::vector<double> rx, ry, grid = xs;
+            if (f.reference_points > 1 && !xs.empty()) {  // a uniform grid over the variant's span (a costly solver)
+              const auto [lo, hi] = std::minmax_element(xs.begin(), xs.end());
+              grid.clear();
+              for (std::int64_t k = 0; k < f.reference_points; ++k)
+                grid.push_back(*lo + (*hi - *lo) * static_cast<double>(k) / static_cast<double>(f.reference_points - 1));
+            }
+            for (double x : grid) {
+              std::map<std::string, double> a = vargs;
+              a[f.x_arg] = x;
+              rx.push_back(x * f.x_scale);
+              ry.push_back(evaluate(solver, a) * f.ref_scale * f.y_scale);
+            }
+            // A reference that does not depend on what differs between the variants (e.g. Bray & Goodman
+            // for 3 and 75 PREs at one α: the same arguments of the solver apart from x) is drawn once.
+            std::map<std::string, double> taken;
+            for (const auto& info : ref::solvers())
+              if (info.name == solver)
+                for (const auto& arg : info.arguments)
+                  if (arg.name != f.x_arg && vargs.count(arg.name)) taken[arg.name] = vargs.at(arg.name);
+            auto& drawn = drawn_references[solver];
+            if (std::find(drawn.begin(), drawn.end(), taken) != drawn.end()) continue;
+            drawn.push_back(taken);
+            curves.push_back({{"label", words(f, solver + "|" + v.label, words(f, solver, "reference") + ", " + v.label)},
+                              {"x", rx}, {"y", ry}, {"style", "reference"}});
           }
-          for (double x : grid) {
-            std::map<std::string, double> a = vargs;
-            a[f.x_arg] = x;
-            rx.push_back(x * f.x_scale);
-            ry.push_back(evaluate(f.solver, a) * f.ref_scale * f.y_scale);
-          }
-          curves.push_back({{"label", words(f, f.solver, "reference") + ", " + v.label}, {"x", rx}, {"y", ry},
-                            {"style", "reference"}});
-        }
       }
       if (f.reference_per_variant) ref_x.clear();
-      if (!f.solver.empty() && !ref_x.empty() && !f.y_minus_reference) {
-        std::vector<double> px, py;
-        for (double x : ref_x) {
-          std::map<std::string, double> a = ref_args;
-          a[f.x_arg] = x;
-          px.push_back(x * f.x_scale);
-          py.push_back(evaluate(f.solver, a) * f.ref_scale * f.y_scale);
+      if (!ref_x.empty() && !f.y_minus_reference)
+        for (const std::string& solver : f.solvers) {
+          std::vector<double> px, py;
+          for (double x : ref_x) {
+            std::map<std::string, double> a = ref_args;
+            a[f.x_arg] = x;
+            px.push_back(x * f.x_scale);
+            py.push_back(evaluate(solver, a) * f.ref_scale * f.y_scale);
+          }
+          curves.push_back({{"label", words(f, solver, "reference: " + solver)}, {"x", px}, {"y", py}, {"style", "reference"}});
         }
-        curves.push_back({{"label", words(f, f.solver, "reference: " + f.solver)}, {"x", px}, {"y", py}, {"style", "reference"}});
-      }
     }
     nlohmann::json fig = {{"id", f.id}, {"title", f.title}, {"xlabel", f.xlabel}, {"ylabel", f.ylabel},
                           {"logx", f.logx}, {"logy", f.logy}, {"curves", curves}};
@@ -1013,7 +1079,17 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   nlohmann::json setup = s.setup;
   for (const auto& [k, v] : s_setup_extra.items()) setup[k] = v;
   setup["variants"] = s.variants.size();
-  if (s.kind == Kind::refinement) setup["levels"] = s.values;
+  if (s.kind == Kind::refinement) {
+    if (!s.refinement.declared_levels) {
+      std::vector<double> values;
+      for (const RefinementLevel& l : levels) values.push_back(l.value);
+      setup["levels"] = values;
+    } else {
+      std::vector<std::string> words;  // "1x3 (h = 0.0125)"
+      for (const RefinementLevel& l : levels) words.push_back(fmt::format("{} ({} = {:g})", l.label, s.refinement.inverse ? "n" : "h", l.value));
+      setup["levels"] = words;
+    }
+  }
   if (speed_n) setup["mean element-steps per second"] = speed_sum / static_cast<double>(speed_n);
   nlohmann::json prov = dem::provenance();
   prov["overrides"] = s.set;
