@@ -13,6 +13,7 @@
 #include "ref/elastic_contact_2d.hpp"
 #include "ref/free_fall.hpp"
 #include "ref/impact.hpp"
+#include "ref/lattice_beam.hpp"
 #include "ref/oscillator.hpp"
 #include "ref/require.hpp"
 #include "ref/resting_overlap.hpp"
@@ -71,6 +72,39 @@ const SolverArgument beam_face_ends{"ends", "1", "0: segment centres (M13.1), 1:
 const SolverArgument support_stiffness{"k_c", "N/m", "stiffness of each support contact (in series)"};
 
 }  // namespace argument
+
+// The M-D lattice beam of ref/lattice_beam.hpp from registry arguments (radius r = h/(2 n_h)).
+std::vector<SolverArgument> lattice_beam_arguments(bool strength) {
+  std::vector<SolverArgument> list{
+      argument::beam_width, argument::beam_depth, argument::beam_span,
+      {"kn", "Pa", "face normal stiffness per unit strain"}, {"ks", "Pa", "face shear stiffness per unit strain"},
+      argument::beam_rows, {"n_l", "1", "elements along the beam (even integer)"}, argument::beam_segments,
+      argument::beam_face_ends, {"k_c", "N/m", "normal stiffness of each disk contact"},
+      {"k_t", "N/m", "tangential stiffness of each disk contact (0: frictionless)"},
+      {"k_pt", "N/m", "tangential stiffness of the platen on the load disk (0: frictionless)"},
+      {"R_s", "m", "support disk radius"}, {"R_l", "m", "load disk radius"}};
+  if (strength) list.push_back({"sigma_t", "Pa", "tensile strength of the face springs"});
+  return list;
+}
+
+LatticeBeamModel lattice_beam_model(const Args& a) {
+  LatticeBeamModel m;
+  m.rows = a.count("n_h");
+  m.columns = a.count("n_l");
+  m.radius = a("h") / (2.0 * m.rows);
+  m.thickness = a("b");
+  m.kn = a("kn");
+  m.ks = a("ks");
+  m.segments = a.count("N");
+  m.where = a("ends") != 0.0 ? SegmentPositions::face_ends : SegmentPositions::centres;
+  m.span = a("L");
+  m.support_radius = a("R_s");
+  m.load_radius = a("R_l");
+  m.contact_kn = a("k_c");
+  m.contact_kt = a("k_t");
+  m.platen_kt = a("k_pt");
+  return m;
+}
 
 const std::vector<Entry>& table() {
   static const std::vector<Entry> entries{
@@ -337,6 +371,17 @@ const std::vector<Entry>& table() {
          return theta_at_travel_pre_face(a("delta_B"), a("alpha"), a("W"), a("H"), a.count("n_w"),
                                          a.count("n_h"));
        }},
+      {{"beam.lattice_exact_stiffness",
+        "P/delta at mid-span (bottom point left of x = 0) of the bonded square PRE lattice on disk supports "
+        "under a load disk: the assembled linear stiffness matrix of the rigid elements, face springs "
+        "M6/M13/M15, disk contacts k_c, k_t (ref/lattice_beam.hpp)",
+        lattice_beam_arguments(false), "N/m"},
+       [](const Args& a) { return solve_lattice_beam(lattice_beam_model(a)).stiffness; }},
+      {{"beam.lattice_exact_first_crack_load",
+        "load at which the most stretched face spring of the linear lattice beam reaches sigma_t A/N (M8), "
+        "same model as beam.lattice_exact_stiffness",
+        lattice_beam_arguments(true), "N"},
+       [](const Args& a) { return solve_lattice_beam(lattice_beam_model(a), a("sigma_t")).first_crack_load; }},
   };
   return entries;
 }

@@ -94,6 +94,23 @@ TEST_CASE("stability guard: a disk with several disk contacts is below the singl
   CHECK(sim_many.stability_limit() < 0.75 * pair_limit);
 }
 
+TEST_CASE("stability guard: two contacts of a disk may lie on one axis (the worst arrangement is found)", "[stability]") {
+  // Three equal disks, so each can touch two others: the worst arrangement puts both contacts on one
+  // axis (0 and 180 degrees), λ = 2(K/m + K/√(m m)) = 4K/m exactly (block Gershgorin, ks = 0). A search
+  // that misses positions near the normal to the first contact finds less (an unsafe bound).
+  auto m = test::make_model({{"disk", 2650.0}}, 1e-6);
+  dem::PairLaw law;
+  law.linear.kn = kn;
+  law.linear.ks = 0.0;
+  law.linear.mu = 0.5;
+  law.damping_ratio = 0.3;
+  test::set_law(m, 0, 0, law);
+  for (const double x : {-2 * r, 0.0, 2 * r}) dem::add_element(m, dem::Shape::disk, 0, r, {x, 0.0}, {}, 0.0, dem::PreMass::square, mass);
+  const dem::StabilityBound b = dem::assembly_stability_bound(m, {});
+  CHECK_THAT(b.stiffness_rate, WithinRel(4.0 * kn / mass, 1e-12));
+  CHECK(b.element_contacts == 2);
+}
+
 namespace {
 
 /// A bonded 3 × 3 lattice of PREs (r = 1 cm, square mass), N = 2 segments, h_n = 1, k_s/k_n = 0.4.

@@ -78,6 +78,10 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"silo.beverloo_2d", {"C", "rho_b", "g", "D", "k", "d"}},
       {"base_friction.pre_face_rate", {"theta", "alpha", "W", "H", "n_w", "n_h"}},
       {"base_friction.theta_pre_face", {"alpha", "delta_B", "W", "H", "n_w", "n_h"}},
+      {"beam.lattice_exact_stiffness",
+       {"b", "h", "L", "kn", "ks", "n_h", "n_l", "N", "ends", "k_c", "k_t", "k_pt", "R_s", "R_l"}},
+      {"beam.lattice_exact_first_crack_load",
+       {"b", "h", "L", "kn", "ks", "n_h", "n_l", "N", "ends", "k_c", "k_t", "k_pt", "R_s", "R_l", "sigma_t"}},
   };
   const auto infos = ref::solvers();
   CHECK(infos.size() == expected.size());

@@ -150,6 +150,15 @@ struct Arrangement {
 
 /// max Σ_c (w_c cos²θ_c + b_c) over arrangements (see above). types 0 = element, 1 = segment wall,
 /// 2 = point wall; gaps[a][b] in radians between consecutive contacts of types a, b.
+///
+/// Search space (exact, no arrangement is lost): the grid values f_t(p) are symmetric under p → −p and
+/// p → p + kGrid/2 (cos² and the rounding interval are), and so are the gap rules. Take the contact
+/// nearest the axis {0, π}, at grid distance α ≤ kGrid/4; a turn by π and a reflection bring it to
+/// position α and leave every other contact at least α from the axis. So a dynamic programme over
+/// "first contact at s0 = α, every contact at least s0 from the axis" for s0 = 0 … kGrid/4 visits an
+/// equal-valued image of every arrangement. Since w ≥ 0, f_t(p) ≤ f_t(s0) there, and no arrangement
+/// from s0 can exceed B(s0) = Σ_t max_count[t]·f_t(s0) + the point walls: B falls with s0, and the
+/// search stops when B(s0) ≤ the best found (it cannot beat it, ties included).
 Arrangement arrangement_max(const Weights wt[3], const int max_count[3], const std::vector<std::pair<int, int>>& wall_sets,
                             const double gaps[3][3]) {
   // Point walls have no gap to anything, so they do not constrain the others: each sits at the
@@ -168,70 +177,79 @@ Arrangement arrangement_max(const Weights wt[3], const int max_count[3], const s
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) g[a][b] = std::max(0, static_cast<int>(std::ceil(gaps[a][b] / delta - 1e-12)) - 1);
   std::vector<double> f[3];
+  const int quarter = kGrid / 4, half = kGrid / 2;
   for (int t = 0; t < 3; ++t) {
     f[t].resize(kGrid);
-    for (int p = 0; p < kGrid; ++p) {
+    for (int p = 0; p <= quarter; ++p) {
       // the largest value over the directions that round to this grid point, |θ − pδ| ≤ δ/2
       const double lo = (p - 0.5) * delta, hi = (p + 0.5) * delta;
       const double c1 = std::cos(lo), c2 = std::cos(hi);
-      const bool has_axis = std::floor(hi / std::numbers::pi) != std::floor(lo / std::numbers::pi) ||
-                            std::fmod(lo, std::numbers::pi) == 0.0;
-      const double cos2 = has_axis ? 1.0 : std::max(c1 * c1, c2 * c2);
-      f[t][static_cast<std::size_t>(p)] = wt[t].w * cos2 + wt[t].b;
+      const double cos2 = p == 0 ? 1.0 : std::max(c1 * c1, c2 * c2);
+      const double v = wt[t].w * cos2 + wt[t].b;
+      // exactly symmetric about the axis {0, π} and the normal {π/2, 3π/2}
+      for (int q : {p, half - p, half + p, kGrid - p})
+        if (q < kGrid) f[t][static_cast<std::size_t>(q)] = v;
     }
   }
-  const int nd = max_count[0] + 1, ns = max_count[1] + 1, np = 1;
-  const int states = nd * ns * np * 3;
-  auto idx = [&](int d, int s, int p, int t) { return ((d * ns + s) * np + p) * 3 + t; };
+  const int nd = max_count[0] + 1, ns = max_count[1] + 1;
+  const int states = nd * ns * 2;
+  auto idx = [&](int d, int s, int t) { return (d * ns + s) * 2 + t; };
+  std::vector<int> points(static_cast<std::size_t>(ns));
+  for (int s = 0; s < ns; ++s) points[static_cast<std::size_t>(s)] = points_with(s);
   const double none = -inf;
-  std::vector<double> best(static_cast<std::size_t>(kGrid) * states), pm(best.size());
+  std::vector<double> pm(static_cast<std::size_t>(kGrid) * states);  // prefix max over positions ≤ p
   Arrangement out;
   if (max_count[2] > 0 && points_with(0) > 0) out = {points_with(0) * point_value, 0, 0, points_with(0)};
-  // Every arrangement can be turned by π (cos² has period π) so that its first contact lies in [0, π).
-  for (int s0 = 0; s0 < kGrid / 2; ++s0) {
+  int most_points = 0;
+  for (int s = 0; s < ns; ++s) most_points = std::max(most_points, points[static_cast<std::size_t>(s)]);
+  const double points_bound = max_count[2] > 0 ? most_points * point_value : 0.0;
+  for (int s0 = 0; s0 <= quarter; ++s0) {
+    double bound = points_bound;
+    for (int t = 0; t < 2; ++t) bound += max_count[t] * std::max(0.0, f[t][static_cast<std::size_t>(s0)]);
+    if (bound <= out.value) break;  // f_t(s0) falls with s0: no later start can do better
+    // the positions at least s0 from the axis {0, π}, p ≥ s0: [s0, half − s0] ∪ [half + s0, kGrid − s0]
+    auto allowed = [&](int p) { return p <= half - s0 || (p >= half + s0 && p <= kGrid - s0); };
     for (int t0 = 0; t0 < 2; ++t0) {
       if (max_count[t0] == 0) continue;
-      std::fill(best.begin() + static_cast<std::ptrdiff_t>(s0) * states, best.end(), none);
-      std::fill(pm.begin() + static_cast<std::ptrdiff_t>(s0) * states, pm.end(), none);
-      for (int p = s0; p < kGrid; ++p) {
-        double* bp = &best[static_cast<std::size_t>(p) * states];
+      for (int p = s0; p <= std::min(kGrid - 1, kGrid - s0); ++p) {
         double* mp = &pm[static_cast<std::size_t>(p) * states];
         if (p > s0) std::copy(mp - states, mp, mp);  // prefix max up to p − 1
+        else std::fill(mp, mp + states, none);
+        if (!allowed(p)) continue;
         for (int d = 0; d < nd; ++d)
-          for (int s = 0; s < ns; ++s)
-            for (int q = 0; q < np; ++q) {
-              const int points = points_with(s);
-              if (points < 0) continue;
-              for (int t = 0; t < 2; ++t) {
-                const int cnt[3] = {d, s, q};
-                if (cnt[t] == 0) continue;
-                double v = none;
-                if (d + s + q == 1) {
-                  if (t == t0 && p == s0) v = f[t][static_cast<std::size_t>(p)];
-                } else {
-                  int prev[3] = {d, s, q};
-                  --prev[t];
-                  for (int tp = 0; tp < 2; ++tp) {
-                    // a gap of 0 (walls) allows the same position: its predecessors have fewer
-                    // contacts and are already final at p
-                    const int pp = p - g[tp][t];
-                    if (pp < s0) continue;
-                    const double mv = pm[static_cast<std::size_t>(pp) * states + idx(prev[0], prev[1], prev[2], tp)];
-                    if (mv > none) v = std::max(v, mv + f[t][static_cast<std::size_t>(p)]);
-                  }
+          for (int s = 0; s < ns; ++s) {
+            const int pts = points[static_cast<std::size_t>(s)];
+            if (pts < 0) continue;
+            for (int t = 0; t < 2; ++t) {
+              const int cnt[2] = {d, s};
+              if (cnt[t] == 0) continue;
+              const double ft = f[t][static_cast<std::size_t>(p)];
+              double v = none;
+              if (d + s == 1) {
+                if (t == t0 && p == s0) v = ft;
+              } else {
+                int prev[2] = {d, s};
+                --prev[t];
+                for (int tp = 0; tp < 2; ++tp) {
+                  // a gap of 0 (walls) allows the same position: its predecessors have fewer
+                  // contacts and are already final at p
+                  const int pp = p - g[tp][t];
+                  if (pp < s0) continue;
+                  const double mv = pm[static_cast<std::size_t>(pp) * states + idx(prev[0], prev[1], tp)];
+                  if (mv > none) v = std::max(v, mv + ft);
                 }
-                const int k = idx(d, s, q, t);
-                bp[k] = v;
-                mp[k] = std::max(mp[k], v);
-                if (v > none) {
-                  const bool single = d + s + q == 1;
-                  if (single || s0 + kGrid - p >= g[t][t0]) {
-                    const double total = v + (max_count[2] > 0 ? points * point_value : 0.0);
-                    if (total > out.value) out = {total, d, s, max_count[2] > 0 ? points : 0};
-                  }
+              }
+              if (v > none) {
+                double& m = mp[idx(d, s, t)];
+                m = std::max(m, v);
+                const bool single = d + s == 1;
+                if (single || s0 + kGrid - p >= g[t][t0]) {
+                  const double total = v + (max_count[2] > 0 ? pts * point_value : 0.0);
+                  if (total > out.value) out = {total, d, s, max_count[2] > 0 ? pts : 0};
                 }
               }
             }
+          }
       }
     }
   }
