@@ -4,6 +4,9 @@
 set -euo pipefail
 pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtomlplusplus-dev
       libcli11-dev nlohmann-json3-dev libfmt-dev gnuplot-nox
+      # PNG force-network pictures (zlib) and the check of the ParaView snapshots with VTK's reader
+      # (ctest -L tools, tests/tools/check_vtk_snapshots.py)
+      zlib1g-dev python3-vtk9
       # the browser check of the report (ctest -L browser, tests/browser/check_report.py)
       chromium python3
       # sanitizers and fuzzing (scripts/sanitize.sh, scripts/fuzz.sh): clang 14, its runtime libraries

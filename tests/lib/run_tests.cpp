@@ -11,6 +11,7 @@
 #include "dem/run/run.hpp"
 
 #include "test_support.hpp"
+#include "vtp_reader.hpp"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
@@ -169,15 +170,7 @@ TEST_CASE("Snapshots show the crack: each contact line carries its linked segmen
   REQUIRE(snaps.size() > 3);
   std::sort(snaps.begin(), snaps.end());
   snaps.erase(snaps.begin());  // t = 0: before the first sweep, no contact has its links yet
-  auto links_of = [](const fs::path& p) {
-    const std::string s = slurp(p);
-    const auto a = s.find("Name=\"links\"");
-    REQUIRE(a != std::string::npos);
-    std::istringstream in(s.substr(s.find('\n', a), s.find("</DataArray>", a) - s.find('\n', a)));
-    std::vector<int> v;
-    for (int x; in >> x;) v.push_back(x);
-    return v;
-  };
+  auto links_of = [](const fs::path& p) { return test::vtp_array<std::int32_t>(slurp(p), "links"); };
   const auto first = links_of(snaps.front()), last = links_of(snaps.back());
   CHECK(std::count(first.begin(), first.end(), 5) > 0);
   CHECK(std::count_if(first.begin(), first.end(), [](int n) { return n > 1 && n < 5; }) == 0);  // intact early in the loading

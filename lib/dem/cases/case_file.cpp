@@ -717,6 +717,31 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
       for (const auto& item : *arr) c.output.series_locations.push_back(where(item, file));
     c.output.vtk = r.boolean("vtk", true);
     c.output.vtk_every = r.integer("vtk_every", 0, std::int64_t{1} << 40, 0);
+    OutputSpec& o = c.output;
+    o.pictures = r.boolean("pictures", false);
+    o.picture_every = r.quantity("picture_every", dims::time, 0.0);
+    rd.non_negative(r, "picture_every", o.picture_every);
+    if (o.picture_every > 0.0 && o.picture_every < m.numerics.dt)
+      r.fail("picture_every", fmt::format("{:.6g} s is shorter than dt = {:.6g} s; a picture interval of at least one step",
+                                          o.picture_every, m.numerics.dt));
+    if (o.picture_every > 0.0 && m.numerics.duration / o.picture_every > 10000.0)
+      r.fail("picture_every", fmt::format("{:.6g} s gives {:.4g} pictures over {:.6g} s; at most 10000", o.picture_every,
+                                          m.numerics.duration / o.picture_every, m.numerics.duration));
+    if (const toml::node* pt = r.node("picture_times")) {
+      r.mark("picture_times");
+      const toml::array* ts = pt->as_array();
+      if (!ts || ts->empty()) r.fail("picture_times", "expected a non-empty array of times, e.g. [\"0.5 s\", \"1 s\"]");
+      if (ts->size() > 10000) r.fail("picture_times", "at most 10000 times");
+      for (std::size_t k = 0; k < ts->size(); ++k) {
+        const double t = r.quantity_of(*ts->get(k), "picture_times", dims::time);
+        if (!(t >= 0.0)) r.fail("picture_times", "expected times >= 0 s");
+        if (!o.picture_times.empty() && t <= o.picture_times.back()) r.fail("picture_times", "must increase strictly");
+        o.picture_times.push_back(t);
+      }
+    }
+    o.picture_width = r.integer("picture_width", 64, 8000, 800);
+    o.picture_max_force = r.optional_quantity("picture_max_force", dims::force);
+    if (o.picture_max_force) rd.positive(r, "picture_max_force", *o.picture_max_force);
     r.finish();
   }
   // [stop]

@@ -46,6 +46,15 @@ struct OutputSpec {
   std::vector<std::string> series_locations;  // "file:line" of each name, for errors
   std::int64_t vtk_every = 0;          // snapshot every this many steps (0: first and last only)
   bool vtk = true;
+  // Contact-force network pictures (PNG, run/picture/force_network.hpp) in pictures/: at the first and
+  // the last step if `pictures`, every `picture_every` [s] and at each of `picture_times` [s] (the first
+  // step at or after the time).
+  bool pictures = false;
+  double picture_every = 0.0;           // [s], 0: none
+  std::vector<double> picture_times;    // [s], increasing
+  std::int64_t picture_width = 800;     // [px]
+  std::optional<double> picture_max_force;  // [N] drawn at the largest line width; none: each picture's largest
+  bool any_pictures() const { return pictures || picture_every > 0.0 || !picture_times.empty(); }
 };
 
 /// When a run counts as settled (run.cpp): every criterion given must hold at every step of a window

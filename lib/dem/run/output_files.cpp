@@ -88,7 +88,7 @@ bool is_run_output(const std::string& name) {
   std::string base = name;
   for (const char* suffix : {".tmp", ".partial"})
     if (base.size() > std::strlen(suffix) && base.ends_with(suffix)) base.resize(base.size() - std::strlen(suffix));
-  return base == "series.csv" || base == "summary.json" || base == "snapshots.pvd" || base == "vtk" ||
+  return base == "series.csv" || base == "summary.json" || base == "snapshots.pvd" || base == "vtk" || base == "pictures" ||
          base == "checkpoint.bin";
 }
 

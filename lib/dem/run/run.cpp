@@ -18,6 +18,7 @@
 #include "dem/run/interrupt.hpp"
 #include "dem/run/output_files.hpp"
 #include "dem/run/vtk_writer.hpp"
+#include "dem/run/picture/force_network.hpp"
 
 #include "dem2d_version.hpp"  // generated at build time: DEM2D_VERSION
 #ifndef DEM2D_BUILD_TYPE
@@ -314,6 +315,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       csv.write(head + "\n");
     }
     if (c.output.vtk) std::filesystem::create_directories(opt.out_dir / "vtk");
+    if (c.output.any_pictures()) std::filesystem::create_directories(opt.out_dir / "pictures");
   }
   std::string row;
   std::int64_t row_step = -1, snapshot_step = -1;  // the step of the last row / snapshot written
@@ -341,8 +343,40 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
     write_vtp(opt.out_dir / "vtk" / name, sim);
     snapshots.emplace_back(sim.time(), "vtk/" + name);
   };
+  // Force-network pictures: the steps of the chosen times (the first step at or after each time).
+  std::vector<std::int64_t> picture_steps;
+  if (write && c.output.any_pictures()) {
+    auto step_of = [&](double t) { return std::llround(std::ceil(t / m.numerics.dt - 1e-9)); };
+    if (c.output.picture_every > 0.0)
+      for (std::int64_t n = 1;; ++n) {
+        const std::int64_t k = step_of(static_cast<double>(n) * c.output.picture_every);
+        if (k > total_steps) break;
+        picture_steps.push_back(k);
+      }
+    for (double t : c.output.picture_times)
+      if (step_of(t) <= total_steps) picture_steps.push_back(step_of(t));
+    std::sort(picture_steps.begin(), picture_steps.end());
+    picture_steps.erase(std::unique(picture_steps.begin(), picture_steps.end()), picture_steps.end());
+  }
+  std::size_t next_picture = static_cast<std::size_t>(
+      std::lower_bound(picture_steps.begin(), picture_steps.end(), sim.steps()) - picture_steps.begin());
+  std::int64_t picture_step = -1;  // the step of the last picture written
+  std::vector<std::pair<double, std::string>> pictures;
+  const PictureOptions picture_options{static_cast<int>(c.output.picture_width), c.output.picture_max_force, 0.0};
+  auto picture = [&](bool wanted) {
+    while (next_picture < picture_steps.size() && picture_steps[next_picture] <= sim.steps()) {
+      wanted = wanted || picture_steps[next_picture] == sim.steps();
+      ++next_picture;
+    }
+    if (!wanted || !write || picture_step == sim.steps()) return;
+    picture_step = sim.steps();
+    const std::string name = fmt::format("picture_{:09d}.png", sim.steps());
+    write_force_network_png(opt.out_dir / "pictures" / name, sim, picture_options);
+    pictures.emplace_back(sim.time(), "pictures/" + name);
+  };
   write_row();
   snapshot();
+  picture(c.output.pictures);
 
   RunResult res;
   res.stability_limit = limit;
@@ -485,6 +519,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
     const bool last = k + 1 == total_steps;
     if (c.output.every > 0 && sim.steps() % c.output.every == 0 && !last) write_row();
     if (c.output.vtk_every > 0 && sim.steps() % c.output.vtk_every == 0 && !last) snapshot();
+    if (next_picture < picture_steps.size() && picture_steps[next_picture] == sim.steps()) picture(false);
     if (sim.steps() % check_every == 0 || last) {
       const Energies en = sim.energies();
       const double mech = en.kinetic + en.elastic + (en.potential - potential0);
@@ -528,6 +563,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   const bool interrupted = res.status == "interrupted";
   if (!(interrupted && row_step == sim.steps())) write_row();
   if (!(interrupted && snapshot_step == sim.steps())) snapshot();
+  picture(c.output.pictures);
 
   res.steps = sim.steps();
   res.time = sim.time();
@@ -598,6 +634,11 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       {"resolved_case", c.resolved},
   };
   res.summary["case_hash"] = case_hash(c);
+  if (!pictures.empty()) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& [t, name] : pictures) list.push_back({{"time", t}, {"file", name}});
+    res.summary["pictures"] = list;
+  }
   if (restart)
     res.summary["restart"] = {{"checkpoint", opt.restart.string()}, {"from_case", restart->case_path},
                               {"step", restart->step}, {"time", restart->time}, {"other_case", opt.restart_other_case},
