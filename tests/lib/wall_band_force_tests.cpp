@@ -28,6 +28,12 @@ density = "2.65 g/cm^3"
 [[material]]
 name = "wall"
 [[contact]]
+between = ["sand", "sand"]
+law = "linear"
+kn = "1e6 N/m"
+ks = "2.5e5 N/m"
+friction = 0.3
+[[contact]]
 between = ["sand", "wall"]
 law = "linear"
 kn = "1e6 N/m"
@@ -75,8 +81,8 @@ TEST_CASE("Wall force per band along a wall sums the contacts whose contact poin
   // bands that cover the wall add up to the wall's force
   const double fy_wall = sim.model().walls[0].force.y, fx_wall = sim.model().walls[0].force.x;
   CHECK_THAT(q("floor.fs(0,1)", sim), WithinRel(fx_wall, 1e-12));
-  CHECK_THAT(-q("floor.fn(0,1)", sim), !WithinRel(fy_wall, 1e-3));  // e1's normal is not vertical ...
-  CHECK_THAT(-(f0 + f1 / std::sqrt(2.0)), WithinRel(fy_wall, 1e-9)); // ... its vertical part is f1 cos 45°
+  CHECK_THAT(-q("floor.fn(0,1)", sim), !WithinRel(fy_wall, 1e-3));  // e1's normal is not vertical: it
+  CHECK_THAT(-f0 + f1 / std::sqrt(2.0), WithinRel(fy_wall, 1e-9));  // pushes the wall up by f1 sin 45°
   CHECK_THAT(q("walls.fy", sim), WithinRel(fy_wall, 1e-15));
   CHECK_THAT(q("walls.fx", sim), WithinRel(fx_wall, 1e-15));
 }
