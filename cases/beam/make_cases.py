@@ -185,6 +185,7 @@ energy_limit = "10 J"                  # the platen does at most P_max x travel 
 series = [{series_text}]
 every = 100
 vtk = false
+pictures = true                        # force-network PNGs at the start and the end (pictures/)
 
 [stop]
 after_peak = {{ quantity = "platen.fy", drop = 0.5, from = "1 ms" }}  # after the load disk's start-up bounce

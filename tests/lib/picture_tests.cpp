@@ -216,13 +216,13 @@ TEST_CASE("picture: [output] picture keys take units and name file:line: key on 
     const char* key;
     const char* expected;
   };
-  const auto bad = GENERATE(Bad{"picture_every = \"2 m\"", "output.picture_every", "expected time"},
+  const auto bad = GENERATE(Bad{"picture_every = \"2 m\"", "output.picture_every", "expected a time"},
                             Bad{"picture_every = \"1e-7 s\"", "output.picture_every", "shorter than dt"},
                             Bad{"picture_every = \"-1 s\"", "output.picture_every", "must not be negative"},
                             Bad{"picture_times = [\"2 us\", \"1 us\"]", "output.picture_times", "must increase strictly"},
                             Bad{"picture_times = \"1 us\"", "output.picture_times", "non-empty array"},
                             Bad{"picture_width = 10", "output.picture_width", "64"},
-                            Bad{"picture_max_force = \"2 N/m\"", "output.picture_max_force", "expected force"},
+                            Bad{"picture_max_force = \"2 N/m\"", "output.picture_max_force", "expected a force"},
                             Bad{"picture_colour = \"red\"", "output.picture_colour", "unknown key"});
   CAPTURE(bad.line);
   const std::string text = row_case("[output]\n" + std::string(bad.line) + "\n");

@@ -41,8 +41,9 @@ struct Appended {
   std::string data;
   template <class T>
   void array(const char* name, int components, const std::vector<T>& values) {
-    xml.print("<DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{}\"/>\n",
-              vtk_type<T>(), name, components, data.size());
+    xml.print("<DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" NumberOfTuples=\"{}\" format=\"appended\" "
+              "offset=\"{}\"/>\n",
+              vtk_type<T>(), name, components, values.size() / static_cast<std::size_t>(components), data.size());
     const std::uint64_t bytes = values.size() * sizeof(T);
     data.append(reinterpret_cast<const char*>(&bytes), sizeof bytes);
     data.append(reinterpret_cast<const char*>(values.data()), bytes);

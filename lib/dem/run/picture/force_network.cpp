@@ -117,8 +117,12 @@ ForcePicture draw_force_network(const Simulation& sim, const PictureOptions& o) 
     if (!(max_force > 0.0) || c.fn == 0.0) continue;
     const double width = max_line * std::min(std::abs(c.fn) / max_force, 1.5);
     const Vec2 a = f.to_px({e.x[c.i], e.y[c.i]});
-    const Vec2 b = c.wall ? f.to_px({e.x[c.i] + e.radius[c.i] * c.nx, e.y[c.i] + e.radius[c.i] * c.ny})
-                          : f.to_px({e.x[c.j], e.y[c.j]});
+    Vec2 b = c.wall ? f.to_px({e.x[c.i] + e.radius[c.i] * c.nx, e.y[c.i] + e.radius[c.i] * c.ny})
+                    : f.to_px({e.x[c.j], e.y[c.j]});
+    if (c.wall) {  // the round cap ends on the wall, not beyond it
+      const double len = std::hypot(b.x - a.x, b.y - a.y), back = std::min(0.5 * width, 0.5 * len);
+      if (len > 0.0) b = {b.x - (b.x - a.x) * back / len, b.y - (b.y - a.y) * back / len};
+    }
     cv.line(a.x, a.y, b.x, b.y, width, c.fn > 0.0 ? kCompression : kTension);
   }
   // Legend strip.
