@@ -601,6 +601,28 @@ std::vector<ContactView> Simulation::contacts() const {
   return out;
 }
 
+Simulation::BandForce Simulation::wall_band_force(std::uint32_t w, double s0, double s1) const {
+  const Wall& wall = m_.walls[w];
+  const Vec2 ab = wall.b - wall.a;
+  const double len = wall.kind == WallKind::segment ? norm(ab) : 0.0;
+  const Vec2 along = len > 0.0 ? ab * (1.0 / len) : Vec2{0.0, 0.0};
+  const Elements& e = m_.elements;
+  BandForce out;
+  auto add = [&](std::uint32_t i, std::uint32_t j, std::uint8_t touching, double nx, double ny, double fn, double fs) {
+    if (j != w || !touching) return;
+    const Vec2 n{nx, ny}, t{-ny, nx};                                   // t = n rotated by +90°
+    const Vec2 point = closest_point(wall, Vec2{e.x[i], e.y[i]});       // where the element touches it
+    const double s = len > 0.0 ? dot(point - wall.a, along) : 0.0;
+    if (s < s0 || s >= s1) return;
+    out.normal += fn;                                                   // compression positive
+    out.tangential += dot(n * fn + t * fs, along);                      // force on the wall along a→b
+    ++out.contacts;
+  };
+  for (const auto& c : linear_walls_) add(c.i, c.j, c.touching, c.nx, c.ny, c.f.fn, c.f.fs);
+  for (const auto& c : face_walls_) add(c.i, c.j, c.touching, c.nx, c.ny, c.f.p, c.f.q);
+  return out;
+}
+
 std::size_t Simulation::contact_count() const {
   std::size_t n = 0;
   for (const auto& s : linear_pairs_) n += s.touching;

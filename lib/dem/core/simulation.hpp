@@ -60,6 +60,15 @@ class Simulation {
   std::pair<double, std::size_t> contact_force_sum() const;
   /// Normal and shear force of the contact between element i and element j (or wall j); zero if none.
   ContactView contact(std::uint32_t i, std::uint32_t j, bool wall) const;
+  /// The force the elements exert on wall w through the contacts whose contact point (the wall's point
+  /// closest to the element's centre) lies in the band s0 <= s < s1 along the wall (s: distance from the
+  /// wall's first end point a along a→b, in [0, |ab|]; 0 for a point wall): the normal part (compression
+  /// positive) and the part of the force on the wall along a→b [N]. No allocation.
+  struct BandForce {
+    double normal = 0.0, tangential = 0.0;
+    std::size_t contacts = 0;
+  };
+  BandForce wall_band_force(std::uint32_t w, double s0, double s1) const;
 
   /// The time-step limit over every contact the case can form, with what sets it and what it assumes
   /// (stability.hpp); the limit is infinity if no contact is possible.

@@ -109,6 +109,40 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
     }
     return corner_slide(static_cast<std::size_t>(i), alpha_deg * std::numbers::pi / 180.0, m);
   }
+  // <wall>.fn(s0,s1), <wall>.fs(s0,s1): the wall's contacts in a band along it (s in metres from its
+  // first end point); read before splitting on '.', so that the bounds may have decimals
+  for (const char* field : {".fn(", ".fs("})
+    if (const auto at = name.find(field); at != std::string::npos && at > 0 && name.back() == ')') {
+      const long w = wall_ref(name.substr(0, at), m);
+      if (w < 0) break;  // e<i>.fn(...) is not a band: handled (and refused) below
+      const std::string args = name.substr(at + 4, name.size() - at - 5);
+      const auto comma = args.find(',');
+      double s0 = 0.0, s1 = 0.0;
+      try {
+        if (comma == std::string::npos) throw std::invalid_argument(args);
+        std::size_t u0 = 0, u1 = 0;
+        const std::string a = args.substr(0, comma), b = args.substr(comma + 1);
+        s0 = std::stod(a, &u0);
+        s1 = std::stod(b, &u1);
+        if (u0 != a.size() || u1 != b.size()) throw std::invalid_argument(args);
+      } catch (const std::exception&) {
+        throw bad("expected <wall>.fn(s0,s1) or <wall>.fs(s0,s1) with s0 < s1 in metres along the wall");
+      }
+      if (!(s0 < s1)) throw bad("expected s0 < s1 in <wall>.fn(s0,s1) / <wall>.fs(s0,s1)");
+      const auto k = static_cast<std::uint32_t>(w);
+      if (field[2] == 'n')
+        return [k, s0, s1](const Simulation& s) { return s.wall_band_force(k, s0, s1).normal; };
+      return [k, s0, s1](const Simulation& s) { return s.wall_band_force(k, s0, s1).tangential; };
+    }
+  // walls.fx, walls.fy: the force of the elements on all walls together (a settled silo: the weight)
+  if (name == "walls.fx" || name == "walls.fy") {
+    const bool x = name.back() == 'x';
+    return [x](const Simulation& s) {
+      double sum = 0.0;
+      for (const Wall& w : s.model().walls) sum += x ? w.force.x : w.force.y;
+      return sum;
+    };
+  }
   if (name == "unbalanced_force_ratio") return unbalanced_force_ratio;
   long i = -1;
   try {

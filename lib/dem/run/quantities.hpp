@@ -10,6 +10,11 @@
 //   e<i>.links.<wall or e<j>>          linked segments of that contact (face law; 1 for linear)
 //   <wall>.fx  <wall>.fy               force of the elements on the wall [N]
 //   <wall>.x   <wall>.y                wall position (first end point) [m]
+//   walls.fx  walls.fy                 force of the elements on all walls together [N]
+//   <wall>.fn(s0,s1)  <wall>.fs(s0,s1) force of the contacts whose contact point lies in the band
+//                                      s0 <= s < s1 along the wall (s [m] from its `from` end towards
+//                                      `to`): normal part (compression positive) and tangential part
+//                                      along from→to (the wall-force depth profile of a silo) [N]
 //   plate_travel                       base plate travel δ_B = ∫|v_B| dt (base friction, M21) [m]
 //   plate_dx   plate_dy                base plate displacement since the start [m]
 //   e<i>.corner_slide(α)               slide δ of element i's lower corner (−1,−1) down a slope inclined
