@@ -12,6 +12,15 @@ using namespace ver::sens;
 
 namespace {
 
+Parameter par(const std::string& label, double low, double high, bool log_uniform) {
+  Parameter p;
+  p.label = label;
+  p.low = low;
+  p.high = high;
+  p.log_uniform = log_uniform;
+  return p;
+}
+
 struct Estimates {
   SobolIndices si;
   ExactIndices exact;
@@ -49,10 +58,10 @@ double max_error(const Estimates& e) {
 
 std::vector<Parameter> ishigami_params() {
   const double pi = 3.141592653589793;
-  return {{"", "x1", -pi, pi, false}, {"", "x2", -pi, pi, false}, {"", "x3", -pi, pi, false}};
+  return {par("x1", -pi, pi, false), par("x2", -pi, pi, false), par("x3", -pi, pi, false)};
 }
 
-std::vector<Parameter> unit_params(std::size_t d) { return std::vector<Parameter>(d, Parameter{"", "x", 0.0, 1.0, false}); }
+std::vector<Parameter> unit_params(std::size_t d) { return std::vector<Parameter>(d, par("x", 0.0, 1.0, false)); }
 
 }  // namespace
 
@@ -120,9 +129,17 @@ TEST_CASE("Morris trajectories: each factor moves once by exactly the step, on t
 }
 
 TEST_CASE("value_at maps the unit interval to uniform and log-uniform ranges", "[sensitivity]") {
-  CHECK(value_at({"", "", 2.0, 6.0, false}, 0.25) == Approx(3.0));
-  CHECK(value_at({"", "", 1e-3, 1.0, true}, 1.0 / 3.0) == Approx(1e-2));
-  CHECK(value_at({"", "", 1e-3, 1.0, true}, 0.0) == Approx(1e-3));
+  CHECK(value_at(par("", 2.0, 6.0, false), 0.25) == Approx(3.0));
+  CHECK(value_at(par("", 1e-3, 1.0, true), 1.0 / 3.0) == Approx(1e-2));
+  CHECK(value_at(par("", 1e-3, 1.0, true), 0.0) == Approx(1e-3));
+  // Integers 1 … 5: each equally likely over u ∈ [0, 1), and u = 1 gives the top one.
+  Parameter n = par("N", 1.0, 5.0, false);
+  n.integer = true;
+  std::vector<int> count(6, 0);
+  for (int k = 0; k < 1000; ++k) ++count[static_cast<std::size_t>(value_at(n, (k + 0.5) / 1000.0))];
+  for (int v = 1; v <= 5; ++v) CHECK(count[static_cast<std::size_t>(v)] == 200);
+  CHECK(value_at(n, 1.0) == 5.0);
+  CHECK(value_at(n, 0.0) == 1.0);
 }
 
 TEST_CASE("Exact indices: Ishigami a = 7 b = 0.1 and the g-function against published values", "[sensitivity]") {
@@ -248,7 +265,7 @@ TEST_CASE("Sobol estimators: rows with a missing output are dropped, and lengths
 }
 
 TEST_CASE("Morris effects of a linear model are exact and sigma is zero", "[sensitivity]") {
-  const std::vector<Parameter> ps = {{"", "a", 0.0, 1.0, false}, {"", "b", -3.0, 5.0, false}, {"", "c", 0.1, 0.2, false}};
+  const std::vector<Parameter> ps = {par("a", 0.0, 1.0, false), par("b", -3.0, 5.0, false), par("c", 0.1, 0.2, false)};
   const TestFunction f{"linear", {2.0, -0.5, 10.0}};
   const auto tr = morris_trajectories(12, 3, 4, 5);
   std::vector<std::vector<double>> y(tr.size());

@@ -512,7 +512,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
       }
       figures.push_back({{"id", fmt::format("morris_{}", o)},
                          {"title", fmt::format("Morris screening of {}: μ* against σ ({} trajectories, {} levels)", s.outputs[o], s.trajectories, s.levels)},
-                         {"xlabel", fmt::format("μ* [{} per unit range]", s.outputs[o])}, {"ylabel", "σ"},
+                         {"xlabel", fmt::format("μ* [{} per unit range]", s.outputs[o])}, {"ylabel", fmt::format("σ [{} per unit range]", s.outputs[o])},
                          {"logx", false}, {"logy", false}, {"curves", curves}, {"labels", labels}});
     }
     tables.push_back({{"title", fmt::format("Morris elementary effects (unit coordinates: per full range; {} trajectories, {} levels, Δ = {:.4g})",
