@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -315,6 +316,7 @@ nlohmann::json jnum(double x) { return std::isfinite(x) ? nlohmann::json(x) : nl
 }  // namespace
 
 StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
+  const auto started = std::chrono::steady_clock::now();
   const Sens s = read_sens(file);
   const std::size_t d = s.params.size(), no = s.outputs.size();
   const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
@@ -568,6 +570,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
                                   "bootstrap width within 3 × {:.1f} % (its {} resamples' quantile noise) + 10 % (finite-N skew) of it",
                                   100.0 * s.confidence, z, 100.0 * quantile_noise, s.resamples),
                       std::abs(w - clt) <= band * clt, fmt::format("σ_∞ = {}, relative difference", num(sig)));
+            checks.back()["error_kind"] = "rel";
           }
       }
       nlohmann::json curves = nlohmann::json::array();
@@ -626,10 +629,8 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
         }
         curves.push_back({{"label", "exact"}, {"x", xe}, {"y", ye}, {"style", "points"}});
       }
-      std::string names;
-      for (std::size_t i = 0; i < d; ++i) names += fmt::format("{}{} = {}", i ? ", " : "", i + 1, s.params[i].label);
       figures.push_back({{"id", fmt::format("sobol_{}", o)},
-                         {"title", fmt::format("Sobol' indices of {} (N = {}, {} rows used; parameters {})", s.outputs[o], n, si.rows_used, names)},
+                         {"title", fmt::format("Sobol' indices of {} (N = {}, {} rows used)", s.outputs[o], n, si.rows_used)},
                          {"xlabel", "parameter"}, {"ylabel", "index"}, {"logx", false}, {"logy", false}, {"curves", curves},
                          {"xticks", xticks}, {"xrange", {0.5, static_cast<double>(d) + 0.5}}});
     }
@@ -723,6 +724,12 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
       {"reference", s.function ? "exact indices of the test function (sensitivity_functions.hpp)" : "none: a sensitivity study"},
       {"setup", setup}, {"provenance", prov}, {"passed", passed}, {"checks", checks}, {"series", series},
       {"figures", figures}, {"tables", tables}};
+  result["provenance"]["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  result["provenance"]["command"] = fmt::format("dem2d sweep {} --out {} --jobs {}{}", file.string(), out.string(), opt.jobs,
+                                                opt.use_cache ? "" : " --fresh");
+  // The study's README (purpose, findings, known limits) travels with the result: the report shows it.
+  if (const fs::path readme = fs::absolute(file).parent_path() / "README.md"; fs::exists(readme))
+    result["readme"] = dem::read_file(readme);
   dem::write_file_atomic(out / "result.json", result.dump(2) + "\n");
 
   if (opt.print) {
