@@ -47,6 +47,10 @@ std::string with_clause(const Curve& curve, std::size_t index, std::size_t refer
   // Later curves drawn thinner, so that one lying exactly on an earlier one leaves it visible.
   const double lw = std::max(1.2, 3.0 - 0.6 * static_cast<double>(index));
   if (curve.style == "lines") return fmt::format("with lines dt {} lw {:.1f}", dt, lw);
+  if (curve.style == "errorbars")
+    return fmt::format("with yerrorbars pt {} ps {:.2g} lw 1.5", curve.point_type > 0 ? curve.point_type : pt,
+                       curve.point_size > 0.0 ? curve.point_size : 0.7);
+  if (curve.style == "boxes") return "with boxes fs solid 0.45 border";
   if (curve.style == "points")
     return fmt::format("with points pt {} ps {:.2g}", curve.point_type > 0 ? curve.point_type : pt,
                        curve.point_size > 0.0 ? curve.point_size : 0.9);
@@ -189,6 +193,15 @@ std::string gnuplot_script(const Plot& plot, const std::filesystem::path& svg_fi
       list += fmt::format("{}'{}' {:.17g}", list.empty() ? "" : ", ", gnuplot_label(label), v);
     s += "set ytics (" + list + ")\nset grid noytics\n";
   }
+  if (!plot.xticks.empty()) {
+    std::string list;
+    for (const auto& [v, label] : plot.xticks)
+      list += fmt::format("{}'{}' {:.17g}", list.empty() ? "" : ", ", gnuplot_label(label), v);
+    s += "set xtics (" + list + ")\nset grid noxtics\n";
+  }
+  for (const auto& label : plot.labels)
+    if (drawable(label.x, label.y, plot.logx, plot.logy))
+      s += fmt::format("set label '{}' at {:.17g},{:.17g} offset 0.7,0.5 font ',10'\n", gnuplot_label(label.text), label.x, label.y);
   if (plot.xrange.size() == 2) s += fmt::format("set xrange [{:.17g}:{:.17g}]\n", plot.xrange[0], plot.xrange[1]);
   if (plot.yrange.size() == 2) s += fmt::format("set yrange [{:.17g}:{:.17g}]\n", plot.yrange[0], plot.yrange[1]);
 
@@ -199,11 +212,19 @@ std::string gnuplot_script(const Plot& plot, const std::filesystem::path& svg_fi
     if (drawable_points(curve, plot.logx, plot.logy) == 0) continue;
     const std::string block = fmt::format("$curve{}", c);
     s += block + " << EOD\n";
+    const bool bars = curve.style == "errorbars" && curve.ylow.size() >= curve.x.size() && curve.yhigh.size() >= curve.x.size();
     for (std::size_t i = 0; i < curve.x.size() && i < curve.y.size(); ++i)
-      if (drawable(curve.x[i], curve.y[i], plot.logx, plot.logy))
-        s += fmt::format("{:.17g} {:.17g}\n", curve.x[i], curve.y[i]);
+      if (drawable(curve.x[i], curve.y[i], plot.logx, plot.logy)) {
+        if (bars && !(drawable(curve.x[i], curve.ylow[i], plot.logx, plot.logy) && drawable(curve.x[i], curve.yhigh[i], plot.logx, plot.logy)))
+          continue;
+        s += bars ? fmt::format("{:.17g} {:.17g} {:.17g} {:.17g}\n", curve.x[i], curve.y[i], curve.ylow[i], curve.yhigh[i])
+                  : fmt::format("{:.17g} {:.17g}\n", curve.x[i], curve.y[i]);
+      }
     s += "EOD\n";
-    std::string item = block + " using 1:2 " + with_clause(curve, colour, curve.style == "reference" ? references++ : 0);
+    const std::string columns = bars ? "1:2:3:4" : curve.style == "boxes" ? fmt::format("1:2:({:.17g})", curve.box_width) : "1:2";
+    std::string item = block + " using " + columns + " " +
+                       (curve.style == "errorbars" && !bars ? std::string("with points")
+                                                           : with_clause(curve, colour, curve.style == "reference" ? references++ : 0));
     if (!curve.colour.empty())
       item += " lc rgb '" + gnuplot_label(curve.colour) + "'";
     else if (!curve.dashed && curve.style != "reference" && curve.style != "band")

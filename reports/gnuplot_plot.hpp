@@ -18,6 +18,10 @@ struct Curve {
   std::string colour;                 // "#rrggbb": overrides the colour cycle (e.g. one colour per mode)
   int point_type = 0;                 // > 0: gnuplot point type, overriding the cycle
   double point_size = 0.0;            // > 0: overrides the default size
+  // style "errorbars": a point at (x, y) with a vertical bar from ylow to yhigh (an interval);
+  // style "boxes": bars from 0 to y, `box_width` wide (x units), filled half-transparent.
+  std::vector<double> ylow, yhigh;
+  double box_width = 0.3;
   // Successive lines / points of a plot get distinct dash patterns and point shapes, so that a
   // curve lying on another stays visible.
 };
@@ -28,6 +32,12 @@ struct Plot {
   std::string key_position = "top right";  // gnuplot "set key" position ("below": outside, under the plot)
   std::vector<double> xrange, yrange;       // [lo, hi] when given; else from the data
   std::vector<std::pair<double, std::string>> yticks;  // labelled y tics (e.g. rows of a map)
+  std::vector<std::pair<double, std::string>> xticks;  // labelled x tics (e.g. parameter names)
+  struct Label {
+    double x = 0.0, y = 0.0;
+    std::string text;
+  };
+  std::vector<Label> labels;  // text next to a point (e.g. a parameter's name by its Morris point)
   std::vector<Curve> curves;
 };
 

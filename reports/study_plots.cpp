@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sensitivity_marks.hpp"
 #include "study_result.hpp"
 #include "text_format.hpp"
 
@@ -97,6 +98,7 @@ std::optional<Plot> figure_plot(const nlohmann::json& figure, std::string& why_n
   for (const auto& tick : array_field(figure, "yticks"))
     if (tick.is_array() && tick.size() == 2 && tick[0].is_number() && tick[1].is_string())
       plot.yticks.emplace_back(tick[0].get<double>(), tick[1].get<std::string>());
+  add_sensitivity_marks(figure, plot);
   std::size_t points = 0;
   for (const auto& entry : array_field(figure, "curves")) {
     Curve curve;
@@ -113,6 +115,7 @@ std::optional<Plot> figure_plot(const nlohmann::json& figure, std::string& why_n
           std::numeric_limits<double>::quiet_NaN()));  // gaps are dropped when plotting
       curve.y.push_back(y[i].value_or(std::numeric_limits<double>::quiet_NaN()));
     }
+    add_interval(entry, curve);
     points += drawable_points(curve, plot.logx, plot.logy);
     plot.curves.push_back(curve);
   }

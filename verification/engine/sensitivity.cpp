@@ -1,11 +1,12 @@
 #include "engine/sensitivity.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -48,6 +49,11 @@ struct Sens {
   std::optional<double> expected_order;
   double order_band = 0.3;
   int max_failed = 0;
+  // Δt tied to the time-step guard: each run's Δt = dt_fraction × the guard's limit for that run's
+  // parameters (stiffness, mass, damping move the limit). dt_fraction_base: the fraction is the base
+  // case's own Δt / limit (so the base run keeps the case's Δt).
+  std::optional<double> dt_fraction;
+  bool dt_fraction_base = false;
   nlohmann::json setup = nlohmann::json::object();
 };
 
@@ -136,6 +142,12 @@ Sens read_sens(const fs::path& file) {
   }
   if (!s.oat && !s.morris && !s.sobol) fail_at(s, st, "sensitivity.methods", "missing: any of [\"oat\", \"morris\", \"sobol\"]");
   s.max_failed = static_cast<int>((*st)["max_failed_runs"].value_or(int64_t{0}));
+  if (const toml::node* n = st->get("dt_fraction")) {
+    if (auto str = n->value_exact<std::string>(); str && *str == "base") s.dt_fraction_base = true;
+    else if (auto x = n->value<double>(); x && *x > 0.0) s.dt_fraction = *x;
+    else fail_at(s, n, "sensitivity.dt_fraction", "expected a number > 0 (Δt = that × the guard's limit) or \"base\"");
+    if (s.function) fail_at(s, n, "sensitivity.dt_fraction", "only for a case (a test function has no time step)");
+  }
   if (const toml::table* su = (*st)["setup"].as_table())
     for (const auto& [k, v] : *su) {
       if (auto x = v.value<double>()) s.setup[std::string(k.str())] = *x;
@@ -152,15 +164,38 @@ Sens read_sens(const fs::path& file) {
     p.label = (*t)["label"].value_or(p.path.empty() ? fmt::format("x{}", s.params.size() + 1) : p.path);
     if (!t->get("low") || !t->get("high")) fail_at(s, &n, "parameter", fmt::format("\"{}\": need low and high", p.label));
     p.low = quantity(s, *t->get("low"), "parameter.low");
+    if (auto str = t->get("low")->value_exact<std::string>())
+      p.angle = dem::parse_quantity(*str).dim == dem::dims::angle;
     p.high = quantity(s, *t->get("high"), "parameter.high");
     const std::string dist = (*t)["distribution"].value_or(std::string("uniform"));
     if (dist != "uniform" && dist != "log-uniform")
       fail_at(s, t->get("distribution"), "parameter.distribution", "expected \"uniform\" or \"log-uniform\"");
     p.log_uniform = dist == "log-uniform";
+    p.integer = (*t)["integer"].value_or(false);
+    if (const toml::node* an = t->get("also")) {
+      const toml::array* aa = an->as_array();
+      if (!aa) fail_at(s, an, "parameter.also", "expected an array of { path, scale, exponent } tables");
+      for (const auto& x : *aa) {
+        const toml::table* ft = x.as_table();
+        if (!ft || !(*ft)["path"].value<std::string>()) fail_at(s, &x, "parameter.also", "expected { path = \"...\", scale = 1, exponent = 1 }");
+        Parameter::Follower fo;
+        fo.path = *(*ft)["path"].value<std::string>();
+        if (const toml::node* sc = ft->get("scale")) fo.scale = quantity(s, *sc, "parameter.also.scale");
+        fo.exponent = (*ft)["exponent"].value_or(1.0);
+        p.also.push_back(fo);
+      }
+    }
+    if (p.integer && (p.log_uniform || p.low != std::floor(p.low) || p.high != std::floor(p.high)))
+      fail_at(s, &n, "parameter.integer", fmt::format("\"{}\": integer parameters need integer low and high, uniform", p.label));
     if (!(p.high > p.low) || (p.log_uniform && !(p.low > 0.0)))
       fail_at(s, &n, "parameter", fmt::format("\"{}\": need low < high (and low > 0 for log-uniform)", p.label));
     s.params.push_back(p);
   }
+  if (s.dt_fraction || s.dt_fraction_base)
+    for (const Parameter& p : s.params)
+      if (p.path == "numerics.dt")
+        fail_at(s, st->get("dt_fraction"), "sensitivity.dt_fraction",
+                "Δt follows the guard's limit, so numerics.dt cannot also be a parameter");
   if (s.function && sens::dimension(*s.function) != s.params.size())
     fail_at(s, pn, "parameter", fmt::format("the function {} takes {} inputs, {} parameters given", s.function->name,
                                             sens::dimension(*s.function), s.params.size()));
@@ -199,11 +234,19 @@ struct Run {
   std::vector<std::string> sets;
   std::string method, status, message;
   std::vector<double> outputs;                // NaN: missing
+  double dt = std::nan("");                   // dt_fraction: the Δt this run used
 };
+
+/// The time-step guard's limit for a case with these overrides (the guard's refusal off while it is asked).
+double guard_limit(const fs::path& case_file, std::vector<std::string> sets) {
+  sets.push_back("numerics.allow_unstable=true");
+  return dem::check_case(dem::read_case(case_file, sets));
+}
 
 struct Runner {
   const Sens& s;
   fs::path cache_dir;
+  double dt_fraction = 0.0;  // > 0: Δt = dt_fraction × the guard's limit of each run
   std::atomic<int> reused{0}, ran{0};
 
   void run(Run& r) {
@@ -214,6 +257,17 @@ struct Runner {
       r.outputs = {sens::evaluate(*s.function, x)};
       r.status = std::isfinite(r.outputs[0]) ? "completed" : "non-finite";
       return;
+    }
+    if (dt_fraction > 0.0) {
+      try {
+        r.dt = dt_fraction * guard_limit(s.root / s.case_path, r.sets);
+      } catch (const dem::CaseError& e) {
+        r.status = "refused";
+        r.message = e.what();
+        r.outputs.assign(s.outputs.size(), std::nan(""));
+        return;
+      }
+      r.sets.push_back(fmt::format("numerics.dt={:.17g}", r.dt));
     }
     const dem::Case c = dem::read_case(s.root / s.case_path, r.sets);  // a bad path or value: the study fails
     const fs::path entry = cache_entry(cache_dir, c.resolved, r.sets);
@@ -250,6 +304,12 @@ struct Runner {
 };
 
 
+/// The overrides that put parameter p at value v: its path and every path that follows it.
+void push_sets(std::vector<std::string>& sets, const Parameter& p, double v) {
+  sets.push_back(fmt::format("{}={:.17g}{}", p.path, v, p.angle ? " rad" : ""));
+  for (const auto& f : p.also) sets.push_back(fmt::format("{}={:.17g}", f.path, f.scale * std::pow(v, f.exponent)));
+}
+
 std::string num(double x) { return std::isfinite(x) ? fmt::format("{:.6g}", x) : std::string("—"); }
 nlohmann::json jnum(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
 
@@ -273,9 +333,15 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
     for (const Parameter& p : s.params)
       for (double v : {p.low, p.high}) {
         std::vector<std::string> sets = s.set;
-        sets.push_back(fmt::format("{}={:.17g}", p.path, v));
+        push_sets(sets, p, v);
         (void)dem::read_case(s.root / s.case_path, sets);
       }
+
+  if (s.dt_fraction) runner.dt_fraction = *s.dt_fraction;
+  if (s.dt_fraction_base) {
+    const dem::Case base = dem::read_case(s.root / s.case_path, s.set);
+    runner.dt_fraction = base.model.numerics.dt / guard_limit(s.root / s.case_path, s.set);
+  }
 
   auto make_run = [&](const std::string& method, const std::vector<double>& u) {
     Run r;
@@ -283,7 +349,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
     r.u = u;
     r.sets = s.set;
     for (std::size_t i = 0; i < d; ++i)
-      if (std::isfinite(u[i])) r.sets.push_back(fmt::format("{}={:.17g}", s.params[i].path, sens::value_at(s.params[i], u[i])));
+      if (std::isfinite(u[i])) push_sets(r.sets, s.params[i], sens::value_at(s.params[i], u[i]));
     return r;
   };
 
@@ -323,6 +389,8 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
   std::ostringstream csv;
   csv << "run,method";
   for (const auto& p : s.params) csv << ",\"" << p.label << "\"";
+  const bool derived_dt = runner.dt_fraction > 0.0;
+  if (derived_dt) csv << ",dt";
   for (const auto& o : s.outputs) csv << "," << o;
   csv << ",status,message\n";
   int failed = 0;
@@ -337,6 +405,10 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
       const std::string v = std::isfinite(r.u[i]) ? fmt::format("{:.6g}", sens::value_at(s.params[i], r.u[i])) : std::string("base");
       csv << "," << (std::isfinite(r.u[i]) ? fmt::format("{:.17g}", sens::value_at(s.params[i], r.u[i])) : std::string());
       row.push_back(v);
+    }
+    if (derived_dt) {
+      csv << "," << (std::isfinite(r.dt) ? fmt::format("{:.17g}", r.dt) : std::string());
+      row.push_back(num(r.dt));
     }
     for (double y : r.outputs) {
       csv << "," << (std::isfinite(y) ? fmt::format("{:.17g}", y) : std::string());
@@ -395,7 +467,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
         curves.push_back({{"label", s.params[i].label}, {"x", xs}, {"y", ys}, {"style", "linespoints"}});
         const double range = ys.empty() ? std::nan("") : ymax - ymin;
         rows.push_back({s.outputs[o], s.params[i].label,
-                        fmt::format("{} … {}{}", num(s.params[i].low), num(s.params[i].high), s.params[i].log_uniform ? " (log)" : ""),
+                        fmt::format("{} … {}{}", num(s.params[i].low), num(s.params[i].high), s.params[i].log_uniform ? " (log)" : s.params[i].integer ? " (integer)" : ""),
                         num(ys.empty() ? NAN : ys.front()), num(ys.empty() ? NAN : ys.back()), num(range),
                         num(range / std::abs(runs[oat_begin].outputs[o]))});
         idx_csv << "oat," << s.outputs[o] << ",\"" << plain(s.params[i].label) << "\",range," << fmt::format("{:.17g}", range) << ",,,\n";
@@ -418,8 +490,10 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
       for (std::size_t t = 0; t < traj.size(); ++t)
         for (std::size_t p = 0; p < traj[t].points.size(); ++p) f[t].push_back(runs[k++].outputs[o]);
       const sens::MorrisEffects m = sens::morris_effects(traj, f, d);
-      nlohmann::json curves = nlohmann::json::array();
+      nlohmann::json curves = nlohmann::json::array(), labels = nlohmann::json::array();
       for (std::size_t i = 0; i < d; ++i) {
+        if (std::isfinite(m.mu_star[i]) && std::isfinite(m.sigma[i]))
+          labels.push_back({{"x", m.mu_star[i]}, {"y", m.sigma[i]}, {"text", s.params[i].label}});
         rows.push_back({s.outputs[o], s.params[i].label, num(m.mu_star[i]), num(m.mu[i]), num(m.sigma[i]),
                         std::to_string(m.effects[i]), exact.morris_mu_star.empty() ? "" : num(exact.morris_mu_star[i])});
         curves.push_back({{"label", s.params[i].label}, {"x", {jnum(m.mu_star[i])}}, {"y", {jnum(m.sigma[i])}}, {"style", "points"}});
@@ -440,8 +514,8 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
       }
       figures.push_back({{"id", fmt::format("morris_{}", o)},
                          {"title", fmt::format("Morris screening of {}: μ* against σ ({} trajectories, {} levels)", s.outputs[o], s.trajectories, s.levels)},
-                         {"xlabel", fmt::format("μ* [{} per unit range]", s.outputs[o])}, {"ylabel", "σ"},
-                         {"logx", false}, {"logy", false}, {"curves", curves}});
+                         {"xlabel", fmt::format("μ* [{} per unit range]", s.outputs[o])}, {"ylabel", fmt::format("σ [{} per unit range]", s.outputs[o])},
+                         {"logx", false}, {"logy", false}, {"curves", curves}, {"labels", labels}});
     }
     tables.push_back({{"title", fmt::format("Morris elementary effects (unit coordinates: per full range; {} trajectories, {} levels, Δ = {:.4g})",
                                             s.trajectories, s.levels, sens::morris_delta(s.levels))},
@@ -460,12 +534,51 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
         for (std::size_t i = 0; i < d; ++i) fab[i][j] = runs[sobol_begin + (2 + i) * n + j].outputs[o];
       }
       const sens::SobolIndices si = sens::sobol_indices(fa, fb, fab, s.resamples, s.confidence);
+      // Test functions: the bootstrap interval's width against the central limit theorem for N rows,
+      // 2 z σ_∞ / √N, σ_∞ from 2^16 rows of the exact function (sensitivity_estimators.hpp).
+      if (s.function && s.resamples >= 100) {
+        const std::size_t big = std::size_t{1} << 16;
+        const sens::SaltelliDesign des = sens::saltelli_design(big, d);
+        auto f = [&](const std::vector<double>& u) {
+          std::vector<double> x;
+          for (std::size_t i = 0; i < d; ++i) x.push_back(sens::value_at(s.params[i], u[i]));
+          return sens::evaluate(*s.function, x);
+        };
+        std::vector<double> ga(big), gb(big);
+        std::vector<std::vector<double>> gab(d, std::vector<double>(big));
+        for (std::size_t j = 0; j < big; ++j) {
+          ga[j] = f(des.a[j]);
+          gb[j] = f(des.b[j]);
+          for (std::size_t i = 0; i < d; ++i) gab[i][j] = f(des.ab[i][j]);
+        }
+        const sens::SobolAsymptoticSd sd = sens::sobol_asymptotic_sd(ga, gb, gab);
+        const double z = sens::normal_quantile(0.5 * (1.0 + s.confidence));
+        // The bootstrap's own noise: a percentile of B resamples has standard error √(p(1−p)/B)/φ(z) in
+        // units of the spread (p = (1 − c)/2), so the width 2 z σ has relative error √2 × that / (2 z);
+        // 3 of those, plus 10 % for what the CLT leaves out at finite N (the ratio estimator's skew).
+        const double p_end = 0.5 * (1.0 - s.confidence);
+        const double phi_z = std::exp(-0.5 * z * z) / std::sqrt(2.0 * std::numbers::pi);
+        const double quantile_noise = std::sqrt(2.0) * std::sqrt(p_end * (1.0 - p_end) / static_cast<double>(s.resamples)) / phi_z / (2.0 * z);
+        const double band = 3.0 * quantile_noise + 0.1;
+        for (std::size_t i = 0; i < d; ++i)
+          for (const auto& [kind, iv, sig] : {std::tuple{"S", si.first[i], sd.first[i]}, std::tuple{"ST", si.total[i], sd.total[i]}}) {
+            const double clt = 2.0 * z * sig / std::sqrt(static_cast<double>(si.rows_used));
+            const double w = iv.high - iv.low;
+            add_check(fmt::format("width of the {}_{} interval of {} ({}, N = {})", kind, i + 1, s.params[i].label, s.function->name, n),
+                      clt, w, std::abs(w - clt) / clt, band,
+                      fmt::format("CLT: a {:.0f} % interval over N i.i.d. rows is 2 z σ_∞/√N wide (z = {:.4f}, σ_∞ from 2^16 rows); the "
+                                  "bootstrap width within 3 × {:.1f} % (its {} resamples' quantile noise) + 10 % (finite-N skew) of it",
+                                  100.0 * s.confidence, z, 100.0 * quantile_noise, s.resamples),
+                      std::abs(w - clt) <= band * clt, fmt::format("σ_∞ = {}, relative difference", num(sig)));
+            checks.back()["error_kind"] = "rel";
+          }
+      }
       nlohmann::json curves = nlohmann::json::array();
       std::vector<double> xi, xt, ys, yt;
       for (std::size_t i = 0; i < d; ++i) {
         const double x = static_cast<double>(i + 1);
-        xi.push_back(x - 0.1);
-        xt.push_back(x + 0.1);
+        xi.push_back(x - 0.11);
+        xt.push_back(x + 0.11);
         ys.push_back(si.first[i].estimate);
         yt.push_back(si.total[i].estimate);
         rows.push_back({s.outputs[o], s.params[i].label, num(si.first[i].estimate),
@@ -486,13 +599,28 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
                       ex[i] >= iv.low && ex[i] <= iv.high, fmt::format("interval [{}, {}]", num(iv.low), num(iv.high)));
           }
         }
-        curves.push_back({{"label", fmt::format("{} % interval S, {}", 100.0 * s.confidence, s.params[i].label)},
-                          {"x", {x - 0.1, x - 0.1}}, {"y", {jnum(si.first[i].low), jnum(si.first[i].high)}}, {"style", "lines"}});
-        curves.push_back({{"label", fmt::format("{} % interval S_T, {}", 100.0 * s.confidence, s.params[i].label)},
-                          {"x", {x + 0.1, x + 0.1}}, {"y", {jnum(si.total[i].low), jnum(si.total[i].high)}}, {"style", "lines"}});
       }
-      curves.insert(curves.begin(), {{"label", "total S_T (Jansen)"}, {"x", xt}, {"y", yt}, {"style", "points"}});
-      curves.insert(curves.begin(), {{"label", "first order S (Saltelli 2010)"}, {"x", xi}, {"y", ys}, {"style", "points"}});
+      // Bars: S and S_T side by side per parameter, each with its bootstrap interval.
+      std::vector<double> s_lo, s_hi, t_lo, t_hi;
+      nlohmann::json xticks = nlohmann::json::array();
+      for (std::size_t i = 0; i < d; ++i) {
+        s_lo.push_back(si.first[i].low);
+        s_hi.push_back(si.first[i].high);
+        t_lo.push_back(si.total[i].low);
+        t_hi.push_back(si.total[i].high);
+        xticks.push_back({static_cast<double>(i + 1), s.params[i].label});
+      }
+      auto jv = [](const std::vector<double>& v) {
+        nlohmann::json a = nlohmann::json::array();
+        for (double x : v) a.push_back(jnum(x));
+        return a;
+      };
+      curves.push_back({{"label", "first order S (Saltelli 2010)"}, {"x", xi}, {"y", jv(ys)}, {"style", "boxes"}, {"width", 0.2}});
+      curves.push_back({{"label", "total S_T (Jansen)"}, {"x", xt}, {"y", jv(yt)}, {"style", "boxes"}, {"width", 0.2}});
+      curves.push_back({{"label", fmt::format("S, {:.0f} % bootstrap interval", 100.0 * s.confidence)}, {"x", xi}, {"y", jv(ys)},
+                        {"ylow", jv(s_lo)}, {"yhigh", jv(s_hi)}, {"style", "errorbars"}, {"colour", "#000000"}});
+      curves.push_back({{"label", fmt::format("S_T, {:.0f} % bootstrap interval", 100.0 * s.confidence)}, {"x", xt}, {"y", jv(yt)},
+                        {"ylow", jv(t_lo)}, {"yhigh", jv(t_hi)}, {"style", "errorbars"}, {"colour", "#555555"}});
       if (!exact.first.empty()) {
         std::vector<double> xe, ye;
         for (std::size_t i = 0; i < d; ++i) {
@@ -501,11 +629,10 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
         }
         curves.push_back({{"label", "exact"}, {"x", xe}, {"y", ye}, {"style", "points"}});
       }
-      std::string names;
-      for (std::size_t i = 0; i < d; ++i) names += fmt::format("{}{} = {}", i ? ", " : "", i + 1, s.params[i].label);
       figures.push_back({{"id", fmt::format("sobol_{}", o)},
-                         {"title", fmt::format("Sobol' indices of {} (N = {}, {} rows used; parameters {})", s.outputs[o], n, si.rows_used, names)},
-                         {"xlabel", "parameter"}, {"ylabel", "index"}, {"logx", false}, {"logy", false}, {"curves", curves}});
+                         {"title", fmt::format("Sobol' indices of {} (N = {}, {} rows used)", s.outputs[o], n, si.rows_used)},
+                         {"xlabel", "parameter"}, {"ylabel", "index"}, {"logx", false}, {"logy", false}, {"curves", curves},
+                         {"xticks", xticks}, {"xrange", {0.5, static_cast<double>(d) + 0.5}}});
     }
     tables.push_back({{"title", fmt::format("Sobol' indices (Saltelli sampling, N = {}, {} runs; {} % bootstrap intervals)", n, n * (d + 2),
                                             100.0 * s.confidence)},
@@ -563,6 +690,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
   if (run_rows.size() <= 300) {
     nlohmann::json cols = {"run", "method"};
     for (const auto& p : s.params) cols.push_back(p.label);
+    if (derived_dt) cols.push_back("Δt (guard × fraction)");
     for (const auto& o : s.outputs) cols.push_back(o);
     cols.push_back("status");
     tables.push_back({{"title", "All runs (runs.csv)"}, {"columns", cols}, {"rows", run_rows}});
@@ -579,8 +707,11 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
   setup["failed runs"] = failed;
   for (const auto& p : s.params)
     setup["range of " + p.label] = fmt::format("{} = {} … {} ({})", p.path.empty() ? p.label : p.path, num(p.low), num(p.high),
-                                               p.log_uniform ? "log-uniform" : "uniform");
+                                               p.log_uniform ? "log-uniform" : p.integer ? "integers, uniform" : "uniform");
   if (s.function) setup["function"] = s.function->name;
+  if (derived_dt)
+    setup["time step"] = fmt::format("Δt = {:.4g} × the time-step guard's limit of each run{}", runner.dt_fraction,
+                                     s.dt_fraction_base ? " (the base case's own ratio)" : "");
   nlohmann::json prov = dem::provenance();
   prov["overrides"] = s.set;
   prov["runs_reused"] = runner.reused.load();
@@ -593,10 +724,10 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
       {"reference", s.function ? "exact indices of the test function (sensitivity_functions.hpp)" : "none: a sensitivity study"},
       {"setup", setup}, {"provenance", prov}, {"passed", passed}, {"checks", checks}, {"series", series},
       {"figures", figures}, {"tables", tables}};
-  // as a verification study's: wall time, the exact command, the README (the report shows them)
   result["provenance"]["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   result["provenance"]["command"] = fmt::format("dem2d sweep {} --out {} --jobs {}{}", file.string(), out.string(), opt.jobs,
                                                 opt.use_cache ? "" : " --fresh");
+  // The study's README (purpose, findings, known limits) travels with the result: the report shows it.
   if (const fs::path readme = fs::absolute(file).parent_path() / "README.md"; fs::exists(readme))
     result["readme"] = dem::read_file(readme);
   dem::write_file_atomic(out / "result.json", result.dump(2) + "\n");

@@ -98,6 +98,58 @@ SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<doub
   return out;
 }
 
+SobolAsymptoticSd sobol_asymptotic_sd(const std::vector<double>& fa, const std::vector<double>& fb,
+                                      const std::vector<std::vector<double>>& fab) {
+  const std::size_t n = fa.size(), d = fab.size();
+  if (fb.size() != n || n < 2) throw std::invalid_argument("sobol_asymptotic_sd: f(A), f(B) of equal length >= 2");
+  double mu = 0.0;
+  for (std::size_t j = 0; j < n; ++j) mu += fa[j] + fb[j];
+  mu /= 2.0 * static_cast<double>(n);
+  std::vector<double> w(n);
+  double v = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    w[j] = 0.5 * ((fa[j] - mu) * (fa[j] - mu) + (fb[j] - mu) * (fb[j] - mu));
+    v += w[j];
+  }
+  v /= static_cast<double>(n);
+  SobolAsymptoticSd out;
+  auto sd = [&](const std::vector<double>& z) {
+    double mz = 0.0;
+    for (double x : z) mz += x;
+    mz /= static_cast<double>(n);
+    const double si = mz / v;
+    double m = 0.0, m2 = 0.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double psi = z[j] - si * w[j];
+      m += psi;
+      m2 += psi * psi;
+    }
+    m /= static_cast<double>(n);
+    return std::sqrt(std::max(0.0, m2 / static_cast<double>(n) - m * m)) / v;
+  };
+  for (std::size_t i = 0; i < d; ++i) {
+    if (fab[i].size() != n) throw std::invalid_argument("sobol_asymptotic_sd: f(AB_i) differs in length from f(A)");
+    std::vector<double> z1(n), zt(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      z1[j] = fb[j] * (fab[i][j] - fa[j]);
+      zt[j] = 0.5 * (fa[j] - fab[i][j]) * (fa[j] - fab[i][j]);
+    }
+    out.first.push_back(sd(z1));
+    out.total.push_back(sd(zt));
+  }
+  return out;
+}
+
+double normal_quantile(double p) {
+  if (!(p > 0.0 && p < 1.0)) throw std::invalid_argument("normal_quantile: 0 < p < 1");
+  double lo = -40.0, hi = 40.0;
+  for (int k = 0; k < 200 && hi - lo > 1e-12; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (0.5 * std::erfc(-mid / std::sqrt(2.0)) < p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 MorrisEffects morris_effects(const std::vector<MorrisTrajectory>& tr, const std::vector<std::vector<double>>& f,
                              std::size_t d) {
   if (f.size() != tr.size()) throw std::invalid_argument("morris_effects: one output row per trajectory");

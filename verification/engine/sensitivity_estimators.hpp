@@ -29,6 +29,22 @@ SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<doub
                            const std::vector<std::vector<double>>& fab, std::size_t resamples = 1000,
                            double confidence = 0.95, std::uint64_t seed = 12345);
 
+/// The asymptotic standard deviations σ_∞ of √N (Ŝ_i − S_i) and √N (Ŝ_Ti − S_Ti) for N i.i.d. rows
+/// (central limit theorem with the delta method for the ratio Ŝ = mean Z / V̂):
+///   σ_∞² = Var_j[(Z_j − S W_j)] / V²,  W_j = ((f(A)_j − μ)² + (f(B)_j − μ)²) / 2,
+///   Z_j = f(B)_j (f(AB_i)_j − f(A)_j) (first order), Z_j = (f(A)_j − f(AB_i)_j)² / 2 (Jansen total),
+/// with S, μ, V estimated from the given rows (a large design gives the population values). The
+/// percentile bootstrap over N rows estimates the same spread, so its interval is about
+/// 2 z_{(1+c)/2} σ_∞ / √N wide (z = 1.96 at c = 0.95).
+struct SobolAsymptoticSd {
+  std::vector<double> first, total;  // σ_∞ per parameter
+};
+SobolAsymptoticSd sobol_asymptotic_sd(const std::vector<double>& fa, const std::vector<double>& fb,
+                                      const std::vector<std::vector<double>>& fab);
+
+/// The standard normal quantile z with Φ(z) = p (0 < p < 1), to 1e-9 (bisection on std::erfc).
+double normal_quantile(double p);
+
 struct MorrisEffects {
   std::vector<double> mu, mu_star, sigma;  // per parameter: mean, mean |EE|, standard deviation (r − 1)
   std::vector<std::size_t> effects;        // elementary effects used per parameter

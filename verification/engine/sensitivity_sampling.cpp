@@ -11,6 +11,10 @@
 namespace ver::sens {
 
 double value_at(const Parameter& p, double u) {
+  if (p.integer) {  // each integer low … high equally likely for u uniform in [0, 1]
+    const double span = p.high - p.low;
+    return p.low + std::min(std::floor(u * (span + 1.0)), span);
+  }
   if (p.log_uniform) return std::exp(std::log(p.low) + u * (std::log(p.high) - std::log(p.low)));
   return p.low + u * (p.high - p.low);
 }

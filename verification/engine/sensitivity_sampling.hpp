@@ -21,9 +21,18 @@ struct Parameter {
   std::string label;         // e.g. K_n
   double low = 0.0, high = 1.0;
   bool log_uniform = false;  // uniform in ln x
+  bool angle = false;        // given in an angle unit: the value (SI, rad) is passed to --set as "x rad"
+  bool integer = false;      // the integers low … high, each with probability 1/(high − low + 1)
+  /// Further `--set` paths that follow the parameter's value x: path = scale × x^exponent (the same
+  /// stiffness on two laws: scale 1, exponent 1; a probe time at a fixed plate travel: travel / v).
+  struct Follower {
+    std::string path;
+    double scale = 1.0, exponent = 1.0;
+  };
+  std::vector<Follower> also;
 };
 
-/// The value of a parameter at unit coordinate u ∈ [0, 1].
+/// The value of a parameter at unit coordinate u ∈ [0, 1] (integer: low + min(⌊u (high − low + 1)⌋, high − low)).
 double value_at(const Parameter& p, double u);
 
 using Matrix = std::vector<std::vector<double>>;  // rows = points, columns = parameters
