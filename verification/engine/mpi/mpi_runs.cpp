@@ -1,5 +1,8 @@
 #include "engine/mpi/mpi_runs.hpp"
 
+// The C API only (the deprecated C++ bindings of mpi.h do not compile without warnings).
+#define OMPI_SKIP_MPICXX 1
+#define MPICH_SKIP_MPICXX 1
 #include <mpi.h>
 #include <unistd.h>
 
