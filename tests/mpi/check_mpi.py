@@ -5,7 +5,7 @@ same:   runs a study (dem2d study) or a sensitivity study (dem2d sweep) serially
         `mpiexec -n P` for each P given, and asserts that every file the serial run wrote is there and
         identical byte for byte, except for the fields that record the machine and the time (provenance,
         wall times, element-steps per second), which are removed from JSON files before comparing; and
-        that the cache holds the same entries (the same runs, keyed the same way).
+        that the cache holds the same runs with the same results.
 resume: starts the study under `mpiexec -n 2`, sends SIGTERM to mpiexec once some runs are in the
         cache (a job killed by the scheduler), asserts that no result was written, reruns it and asserts
         that the finished runs were reused and that the output equals the serial run's.
@@ -13,6 +13,7 @@ resume: starts the study under `mpiexec -n 2`, sends SIGTERM to mpiexec once som
 import argparse
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -49,10 +50,14 @@ def compare(serial: Path, other: Path, what: str):
             x, y = [json.dumps(strip(json.loads(t)), sort_keys=False).encode() for t in (x, y)]
         if x != y:
             errors.append(f"{what}: {rel} differs from the serial run's")
-    ca = sorted(p.name for p in (serial / "cache").glob("*.json"))
-    cb = sorted(p.name for p in (other / "cache").glob("*.json"))
+    # The cache: the same runs with the same results (entry names contain the run folder's path, which
+    # differs between the two output folders, so the entries are compared by content).
+    def entries(d):
+        return sorted(json.dumps(strip({k: v for k, v in json.loads(p.read_text()).items() if k != "code"}), sort_keys=True)
+                      for p in (d / "cache").glob("*.json"))
+    ca, cb = entries(serial), entries(other)
     if ca != cb:
-        errors.append(f"{what}: the cache holds other runs ({len(ca)} serial, {len(cb)})")
+        errors.append(f"{what}: the cache holds other runs or results ({len(ca)} entries serial, {len(cb)})")
     return errors
 
 
@@ -72,6 +77,8 @@ def main():
     def dem2d(out, jobs, extra=()):
         return [a.dem2d, a.command, a.study, "--out", str(out), "--jobs", str(jobs), *extra]
 
+    if work.exists():  # nothing of an earlier test run may count
+        shutil.rmtree(work)
     serial = work / "serial"
     t0 = time.time()
     subprocess.run(dem2d(serial, 2, ["--fresh"]), check=False, stdout=subprocess.DEVNULL)
