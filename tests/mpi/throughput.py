@@ -13,6 +13,7 @@ look-ups, analysis, writing), the part that does not shrink with more ranks.
 import argparse
 import json
 import os
+import resource
 import statistics
 import subprocess
 import time
@@ -32,23 +33,27 @@ def main():
     configs = [("serial, --jobs 1", [], 1), ("mpiexec -n 1, --jobs 1", mpi + ["-n", "1"], 1),
                ("mpiexec -n 2, --jobs 1", mpi + ["-n", "2"], 1), ("serial, --jobs 2", [], 2)]
     times = {name: [] for name, _, _ in configs}
+    cpu = {name: [] for name, _, _ in configs}  # user + system CPU seconds of all processes of the run
     runs = None
     for r in range(a.rounds):
         for name, prefix, jobs in configs:
             out = Path(a.work) / name.replace(" ", "").replace(",", "_")
             cmd = prefix + [a.dem2d, a.command, a.study, "--out", str(out), "--jobs", str(jobs), "--fresh"]
+            u0 = resource.getrusage(resource.RUSAGE_CHILDREN)
             t0 = time.perf_counter()
             subprocess.run(cmd, stdout=subprocess.DEVNULL, check=True)
             dt = time.perf_counter() - t0
+            u1 = resource.getrusage(resource.RUSAGE_CHILDREN)
             times[name].append(dt)
+            cpu[name].append(u1.ru_utime + u1.ru_stime - u0.ru_utime - u0.ru_stime)
             runs = json.loads((out / "result.json").read_text())["provenance"]["runs_run"]
-            print(f"round {r + 1}: {name:<24} {dt:7.2f} s", flush=True)
+            print(f"round {r + 1}: {name:<24} {dt:7.2f} s wall, {cpu[name][-1]:6.2f} s CPU", flush=True)
     base = statistics.median(times[configs[0][0]])
-    print(f"\n{runs} runs per study\n| configuration | wall times [s] | median [s] | runs/s | ratio to serial --jobs 1 |")
-    print("|---|---|---|---|---|")
+    print(f"\n{runs} runs per study\n| configuration | wall times [s] | median [s] | runs/s | ratio to serial --jobs 1 | CPU [s] (median) |")
+    print("|---|---|---|---|---|---|")
     for name, _, _ in configs:
         m = statistics.median(times[name])
-        print(f"| {name} | {', '.join(f'{t:.2f}' for t in times[name])} | {m:.2f} | {runs / m:.2f} | {base / m:.2f} |")
+        print(f"| {name} | {', '.join(f'{t:.2f}' for t in times[name])} | {m:.2f} | {runs / m:.2f} | {base / m:.2f} | {statistics.median(cpu[name]):.2f} |")
     name, prefix, jobs = configs[2]
     out = Path(a.work) / name.replace(" ", "").replace(",", "_")
     t0 = time.perf_counter()
