@@ -6,9 +6,10 @@ same:   runs a study (dem2d study) or a sensitivity study (dem2d sweep) serially
         identical byte for byte, except for the fields that record the machine and the time (provenance,
         wall times, element-steps per second), which are removed from JSON files before comparing; and
         that the cache holds the same runs with the same results.
-resume: starts the study under `mpiexec -n 2`, sends SIGTERM to mpiexec once some runs are in the
-        cache (a job killed by the scheduler), asserts that no result was written, reruns it and asserts
-        that the finished runs were reused and that the output equals the serial run's.
+resume: starts the study under `mpiexec -n 2`, kills mpiexec and every rank with SIGKILL once a
+        quarter of the runs is in the cache (a job or a node killed hard), asserts that no result was
+        written and that a cache entry is either complete or absent, reruns it and asserts that the
+        finished runs were reused and that the output equals the serial run's.
 """
 import argparse
 import json
@@ -61,6 +62,24 @@ def compare(serial: Path, other: Path, what: str):
     return errors
 
 
+def descendants(pid):
+    """Every process below pid (from /proc)."""
+    children = {}
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                ppid = int((d / "stat").read_text().rsplit(")", 1)[1].split()[1])
+            except (OSError, IndexError, ValueError):
+                continue
+            children.setdefault(ppid, []).append(int(d.name))
+    out, todo = [], [pid]
+    while todo:
+        for c in children.get(todo.pop(), []):
+            out.append(c)
+            todo.append(c)
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--dem2d", required=True)
@@ -106,14 +125,30 @@ def main():
             time.sleep(0.05)
         if proc.poll() is not None:
             sys.exit(f"the job ended (exit {proc.returncode}) before it could be killed: make the study longer")
-        proc.send_signal(signal.SIGTERM)
+        # SIGKILL to every rank and mpiexec (a node or the job killed hard): nothing can finish
+        # or clean up after this point; only what was already in the cache may remain.
+        for pid in descendants(proc.pid) + [proc.pid]:  # the ranks are not in mpiexec's process group
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
         proc.wait(timeout=120)
         kept = len(list(cache.glob("*.json")))
+        time.sleep(1.0)
+        if len(list(cache.glob("*.json"))) != kept:
+            errors.append("a rank outlived the kill (the cache still grows)")
         print(f"killed (exit {proc.returncode}) with {kept} of {total} runs in the cache")
         if (out / "result.json").exists():
             errors.append("the killed job wrote result.json")
         if proc.returncode == 0:
             errors.append("the killed job exited 0")
+        if kept >= total:
+            errors.append("every run was cached before the kill: make the study longer")
+        for e in cache.glob("*.json"):  # atomic writes: no torn entry
+            try:
+                json.loads(e.read_text())
+            except ValueError:
+                errors.append(f"a torn cache entry: {e.name}")
         r = subprocess.run(mpi + ["-n", "2"] + dem2d(out, 1), stdout=subprocess.DEVNULL)
         res = json.loads((out / "result.json").read_text()) if (out / "result.json").exists() else {}
         prov = res.get("provenance", {})
