@@ -13,6 +13,7 @@
 #include <fstream>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include <CLI/CLI.hpp>
@@ -28,6 +29,9 @@
 #include "engine/sensitivity.hpp"
 #include "engine/study.hpp"
 #include "ref/library_versions.hpp"
+#ifdef DEM2D_MPI
+#include "engine/mpi/mpi_runs.hpp"
+#endif
 #include "report.hpp"
 #include "study_result.hpp"
 
@@ -196,6 +200,9 @@ void print_summary(const fs::path& studies_dir) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#ifdef DEM2D_MPI
+  ver::mpi::Session mpi(&argc, &argv);  // MPI for the whole program (a single process is a job of one rank)
+#endif
   CLI::App app{"dem2d — verification-first 2D distinct element method testbed (Cundall disks, Matsui's "
                "pseudo-rectangle elements)"};
   app.require_subcommand(1);
@@ -259,6 +266,13 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   dem::install_interrupt_handlers();  // SIGINT / SIGTERM: runs stop at the next step and write everything
   std::signal(SIGXFSZ, SIG_IGN);      // a file size limit makes writes fail (reported, exit 4) instead of killing
+#ifdef DEM2D_MPI
+  // Under mpirun: rank 0 does the command; for study and sweep the other ranks run what it hands out
+  // (engine/mpi/mpi_runs.hpp, docs/cluster.md), for any other command they do nothing.
+  if (mpi.rank() > 0) return (*study || *sweep) ? ver::mpi::serve(jobs) : 0;
+  std::optional<ver::mpi::Distributor> distributor;
+  if (mpi.size() > 1 && (*study || *sweep)) distributor.emplace(jobs);
+#endif
   try {
     if (*run) {
       run_opt.restart = !restart.empty() ? restart : start_from;

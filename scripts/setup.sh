@@ -2,6 +2,14 @@
 # Installs the Debian packages the testbed needs (only those missing). Safe to run repeatedly.
 # Package list and CMake targets: docs/toolchain.md.
 set -euo pipefail
+# --mpi: also Open MPI (mpirun, the MPI C++ headers), for -DDEM2D_MPI=ON (docs/cluster.md); or DEM2D_SETUP_MPI=1.
+mpi="${DEM2D_SETUP_MPI:-0}"
+for arg in "$@"; do
+  case "$arg" in
+    --mpi) mpi=1 ;;
+    *) echo "setup: unknown option $arg (known: --mpi)" >&2; exit 2 ;;
+  esac
+done
 pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtomlplusplus-dev
       libcli11-dev nlohmann-json3-dev libfmt-dev gnuplot-nox
       # PNG force-network pictures (zlib) and the check of the ParaView snapshots with VTK's reader
@@ -15,6 +23,7 @@ pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtoml
       # (ASan, UBSan, libFuzzer: libclang_rt.fuzzer-x86_64.a, only a Recommends of clang) and
       # llvm-symbolizer (package llvm) for readable stack traces
       clang libclang-rt-dev llvm)
+[ "$mpi" = 1 ] && pkgs+=(openmpi-bin libopenmpi-dev)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

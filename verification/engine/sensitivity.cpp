@@ -20,6 +20,7 @@
 #include "dem/run/run.hpp"
 #include "engine/convergence.hpp"
 #include "engine/run_cache.hpp"
+#include "engine/run_dispatch.hpp"
 #include "engine/sensitivity_estimators.hpp"
 #include "engine/sensitivity_functions.hpp"
 #include "engine/sensitivity_sampling.hpp"
@@ -249,57 +250,88 @@ struct Runner {
   double dt_fraction = 0.0;  // > 0: Δt = dt_fraction × the guard's limit of each run
   std::atomic<int> reused{0}, ran{0};
 
-  void run(Run& r) {
-    if (s.function) {
-      std::vector<double> x;
-      for (std::size_t i = 0; i < s.params.size(); ++i)  // the base point of a function: mid-range
-        x.push_back(sens::value_at(s.params[i], std::isfinite(r.u[i]) ? r.u[i] : 0.5));
-      r.outputs = {sens::evaluate(*s.function, x)};
-      r.status = std::isfinite(r.outputs[0]) ? "completed" : "non-finite";
-      return;
-    }
-    if (dt_fraction > 0.0) {
-      try {
-        r.dt = dt_fraction * guard_limit(s.root / s.case_path, r.sets);
-      } catch (const dem::CaseError& e) {
-        r.status = "refused";
-        r.message = e.what();
-        r.outputs.assign(s.outputs.size(), std::nan(""));
-        return;
-      }
-      r.sets.push_back(fmt::format("numerics.dt={:.17g}", r.dt));
-    }
-    const dem::Case c = dem::read_case(s.root / s.case_path, r.sets);  // a bad path or value: the study fails
-    const fs::path entry = cache_entry(cache_dir, c.resolved, r.sets);
-    std::map<std::string, std::optional<double>> probes;
-    bool done = false;
-    if (const auto cached = read_cached(entry)) {
-      r.status = cached->status;
-      r.message = cached->message;
-      probes = cached->probes;
-      done = true;
-      ++reused;
-    }
-    if (!done) {
-      try {
-        const dem::RunResult res = dem::run_case(c, dem::RunOptions{});
-        if (res.status == "interrupted") throw StudyInterrupted(fmt::format("sensitivity {}: {}", s.name, res.message));
-        r.status = res.status;
-        r.message = res.message;
-        probes = res.probes;
-      } catch (const dem::CaseError& e) {  // the time-step guard (or another check before the run) refused it
-        r.status = "refused";
-        r.message = e.what();
-      }
-      write_cached(entry, {r.status, r.message, 0.0, probes}, c.path.string(), r.sets);
-      ++ran;
-    }
+  void run_function(Run& r) const {
+    std::vector<double> x;
+    for (std::size_t i = 0; i < s.params.size(); ++i)  // the base point of a function: mid-range
+      x.push_back(sens::value_at(s.params[i], std::isfinite(r.u[i]) ? r.u[i] : 0.5));
+    r.outputs = {sens::evaluate(*s.function, x)};
+    r.status = std::isfinite(r.outputs[0]) ? "completed" : "non-finite";
+  }
+
+  void set_outputs(Run& r, const std::map<std::string, std::optional<double>>& probes) const {
     for (const auto& o : s.outputs) {
       if (r.status != "refused" && r.status != "blow-up" && !probes.count(o))
         throw std::runtime_error(fmt::format("{}: sensitivity.outputs: the case has no probe \"{}\"", s.file.string(), o));
       const auto it = probes.find(o);
       r.outputs.push_back(it != probes.end() && it->second && r.status != "blow-up" ? *it->second : std::nan(""));
     }
+  }
+
+  /// Every run: a test function here; DEM runs from the cache, the others through run_all (threads
+  /// here or the ranks of an MPI job, run_dispatch.hpp), each cached as it finishes. Results go to
+  /// the run's own slot, whatever order the runs finish in.
+  void run_all_runs(std::vector<Run>& runs, int jobs) {
+    if (s.function) {
+      for (Run& r : runs) run_function(r);
+      return;
+    }
+    std::vector<std::map<std::string, std::optional<double>>> probes(runs.size());
+    std::vector<RunRequest> reqs;
+    std::vector<std::size_t> slot;
+    std::vector<fs::path> entries;
+    std::vector<std::string> case_paths;
+    const fs::path case_file = fs::absolute(s.root / s.case_path);
+    // Δt tied to the guard: each run's limit first (in parallel; a refusal is the run's result).
+    std::vector<char> settled(runs.size(), 0);
+    if (dt_fraction > 0.0)
+      parallel_for(runs.size(), jobs, [&](std::size_t k) {
+        Run& r = runs[k];
+        try {
+          r.dt = dt_fraction * guard_limit(s.root / s.case_path, r.sets);
+          r.sets.push_back(fmt::format("numerics.dt={:.17g}", r.dt));
+        } catch (const dem::CaseError& e) {
+          r.status = "refused";
+          r.message = e.what();
+          r.outputs.assign(s.outputs.size(), std::nan(""));
+          settled[k] = 1;
+        }
+      });
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      if (settled[k]) continue;
+      Run& r = runs[k];
+      const dem::Case c = dem::read_case(s.root / s.case_path, r.sets);  // a bad path or value: the study fails
+      const fs::path entry = cache_entry(cache_dir, c.resolved, r.sets);
+      if (const auto cached = read_cached(entry)) {
+        r.status = cached->status;
+        r.message = cached->message;
+        probes[k] = cached->probes;
+        ++reused;
+        continue;
+      }
+      reqs.push_back({case_file, r.sets, {}, run_cost(c)});
+      slot.push_back(k);
+      entries.push_back(entry);
+      case_paths.push_back(c.path.string());
+    }
+    run_all(reqs, jobs, [&](std::size_t i, RunReply& rep) {
+      Run& r = runs[slot[i]];
+      r.status = rep.status;
+      r.message = rep.message;
+      if (rep.status == "interrupted" || rep.status == "error") return;
+      if (rep.status == "case-error") {  // the time-step guard (or another check before the run) refused it
+        r.status = "refused";
+        rep.probes.clear();
+      }
+      probes[slot[i]] = rep.probes;
+      write_cached(entries[i], {r.status, r.message, 0.0, rep.probes}, case_paths[i], r.sets);  // at once
+      ++ran;
+    });
+    for (std::size_t k = 0; k < runs.size(); ++k) {  // the first failure in run order
+      if (runs[k].status == "interrupted") throw StudyInterrupted(fmt::format("sensitivity {}: {}", s.name, runs[k].message));
+      if (runs[k].status == "error") throw std::runtime_error(runs[k].message);
+    }
+    for (std::size_t k = 0; k < runs.size(); ++k)
+      if (!settled[k]) set_outputs(runs[k], probes[k]);
   }
 };
 
@@ -382,7 +414,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
     for (std::size_t i = 0; i < d; ++i)
       for (const auto& row : des.ab[i]) runs.push_back(make_run(fmt::format("sobol AB{}", i + 1), row));
   }
-  parallel_for(runs.size(), s.function ? 1 : opt.jobs, [&](std::size_t k) { runner.run(runs[k]); });
+  runner.run_all_runs(runs, opt.jobs);
   fs::remove(out / "running.json");
 
   // The table of every run: inputs (values; blank = the base case's), outputs, status.
@@ -646,7 +678,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
         const sens::SaltelliDesign des = sens::saltelli_design(nn, d);
         auto f = [&](const std::vector<double>& u) {
           Run r = make_run("", u);
-          runner.run(r);
+          runner.run_function(r);
           return r.outputs[0];
         };
         std::vector<double> fa, fb;

@@ -25,6 +25,7 @@
 #include "engine/convergence.hpp"
 #include "engine/refinement_levels.hpp"
 #include "engine/run_cache.hpp"
+#include "engine/run_dispatch.hpp"
 #include "ref/registry.hpp"
 
 namespace fs = std::filesystem;
@@ -418,27 +419,60 @@ struct RunCache {
 
 RunCache* g_cache = nullptr;  // the cache of the study being run (run_study sets it)
 
+/// A run to do: the overrides of the base case and its run folder (empty: no files).
+struct Planned {
+  std::vector<std::string> sets;
+  fs::path out;
+};
+
+/// Runs a batch of the base case with overrides: reuses cached runs, hands the others to run_all
+/// (threads here, or the ranks of an MPI job: run_dispatch.hpp), caches each as it finishes. The k-th
+/// result belongs to the k-th plan, whatever order the runs finish in.
+std::vector<RunOut> run_many(const Study& s, const std::vector<Planned>& plan, int jobs) {
+  std::vector<RunOut> outs(plan.size());
+  std::vector<RunRequest> reqs;
+  std::vector<std::size_t> slot;
+  std::vector<fs::path> entries;
+  std::vector<std::string> case_paths;
+  const fs::path case_file = fs::absolute(s.root / s.case_path);
+  for (std::size_t k = 0; k < plan.size(); ++k) {
+    const dem::Case c = dem::read_case(s.root / s.case_path, plan[k].sets);
+    fs::path entry;
+    if (g_cache && !g_cache->dir.empty()) {
+      entry = cache_entry(g_cache->dir, c.resolved, plan[k].sets, plan[k].out);
+      const fs::path& out = plan[k].out;
+      const bool files_ok = out.empty() || (fs::exists(out / "series.csv") && fs::exists(out / "summary.json"));
+      if (files_ok)
+        if (const auto cached = read_cached(entry)) {
+          ++g_cache->reused;
+          outs[k] = {cached->probes, cached->status, cached->message, cached->eps};
+          continue;
+        }
+    }
+    reqs.push_back({case_file, plan[k].sets, plan[k].out, run_cost(c)});
+    slot.push_back(k);
+    entries.push_back(entry);
+    case_paths.push_back(c.path.string());
+  }
+  run_all(reqs, jobs, [&](std::size_t i, RunReply& r) {
+    const std::size_t k = slot[i];
+    const bool finished = r.status != "interrupted" && r.status != "case-error" && r.status != "error";
+    if (finished && !entries[i].empty()) {  // at once: a killed study keeps every finished run
+      write_cached(entries[i], {r.status, r.message, r.eps, r.probes}, case_paths[i], plan[k].sets);
+      ++g_cache->ran;
+    }
+    outs[k] = {std::move(r.probes), r.status, r.message, r.eps};
+  });
+  for (const RunOut& r : outs) {  // the first failure in plan order, whatever finished first
+    if (r.status == "interrupted") throw StudyInterrupted(fmt::format("study {}: {}", s.name, r.message));
+    if (r.status == "case-error") throw dem::CaseError(r.message);
+    if (r.status == "error") throw std::runtime_error(r.message);
+  }
+  return outs;
+}
+
 RunOut run_one(const Study& s, const std::vector<std::string>& sets, const fs::path& out = {}) {
-  const dem::Case c = dem::read_case(s.root / s.case_path, sets);
-  fs::path entry;
-  if (g_cache && !g_cache->dir.empty()) {
-    entry = cache_entry(g_cache->dir, c.resolved, sets, out);
-    const bool files_ok = out.empty() || (fs::exists(out / "series.csv") && fs::exists(out / "summary.json"));
-    if (files_ok)
-      if (const auto cached = read_cached(entry)) {
-        ++g_cache->reused;
-        return {cached->probes, cached->status, cached->message, cached->eps};
-      }
-  }
-  dem::RunOptions o;  // files only for runs that feed a figure
-  o.out_dir = out;
-  const dem::RunResult r = dem::run_case(c, o);
-  if (r.status == "interrupted") throw StudyInterrupted(fmt::format("study {}: {}", s.name, r.message));
-  if (!entry.empty()) {
-    write_cached(entry, {r.status, r.message, r.element_steps_per_second, r.probes}, c.path.string(), sets);
-    ++g_cache->ran;
-  }
-  return {r.probes, r.status, r.message, r.element_steps_per_second};
+  return run_many(s, {Planned{sets, out}}, 1).front();
 }
 
 std::string fmt_value(std::optional<double> v) { return v ? fmt::format("{:.6g}", *v) : std::string("—"); }
@@ -549,8 +583,8 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   nlohmann::json mode_chart;  // mode_map: the coloured chart (first figure)
   if (s.kind == Kind::single || s.kind == Kind::refinement) {
     const std::size_t nl = s.kind == Kind::single ? 1 : levels.size();
-    std::vector<RunOut> runs(s.variants.size() * nl);
-    parallel_for(runs.size(), opt.jobs, [&](std::size_t k) {
+    std::vector<Planned> plan(s.variants.size() * nl);
+    for (std::size_t k = 0; k < plan.size(); ++k) {
       const Variant& v = s.variants[k / nl];
       std::vector<std::string> sets = s.set;
       sets.insert(sets.end(), v.set.begin(), v.set.end());
@@ -574,8 +608,9 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
           sets.push_back("output.vtk=false");
         }
       }
-      runs[k] = run_one(s, sets, run_dir);
-    });
+      plan[k] = {sets, run_dir};
+    }
+    const std::vector<RunOut> runs = run_many(s, plan, opt.jobs);
     for (const auto& r : runs) {
       speed_sum += r.eps;
       ++speed_n;
@@ -587,7 +622,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
     for (std::size_t k = 0; k < runs.size(); ++k) {
       csv << '"' << s.variants[k / nl].label << "\"," << k % nl << ","
           << (s.kind == Kind::refinement ? fmt::format("{:.17g}", levels[k % nl].value) : "") << "," << runs[k].status;
-      for (const auto& c : s.checks) csv << "," << fmt_value(runs[k].probes.count(c.probe) ? runs[k].probes[c.probe] : std::nullopt);
+      for (const auto& c : s.checks) csv << "," << fmt_value(runs[k].probes.count(c.probe) ? runs[k].probes.at(c.probe) : std::nullopt);
       csv << "\n";
     }
     dem::write_file_atomic(out / "levels.csv", csv.str(), false);
@@ -706,6 +741,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
     auto mode_at = [&](const char* solver, double alpha, double phi, double bw, double bh) {
       return static_cast<int>(std::lround(ref::evaluate(solver, {{"alpha", alpha}, {"phi", phi}, {"b", bw}, {"h", bh}})));
     };
+    std::vector<Planned> plan(pts.size());
     parallel_for(pts.size(), opt.jobs, [&](std::size_t k) {
       Point& p = pts[k];
       const auto [cols, rows] = s.blocks[p.block];
@@ -725,15 +761,20 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
       sets.push_back(fmt::format("contact.{}.friction_angle={:.17g} deg", s.wall_contact, phi * 180.0 / std::numbers::pi));
       sets.push_back(fmt::format("probe.0.quantity=e{}.px(1,-1)", cols - 1));
       sets.push_back(fmt::format("probe.2.quantity=e{}.px(1,-1)", cols - 1));
-      const RunOut r = run_one(s, sets);
+      plan[k].sets = sets;
+    });
+    const std::vector<RunOut> mode_runs = run_many(s, plan, opt.jobs);
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      Point& p = pts[k];
+      const RunOut& r = mode_runs[k];
       auto get = [&](const char* name) { return r.probes.count(name) ? r.probes.at(name) : std::nullopt; };
-      if (r.status == "blow-up" || !get("pivot_x") || !get("rotation") || !get("pivot_x_start") || !get("rotation_start")) return;
+      if (r.status == "blow-up" || !get("pivot_x") || !get("rotation") || !get("pivot_x_start") || !get("rotation_start")) continue;
       // The motion after the start-up transient: from `pivot_x_start` / `rotation_start` to the end.
       p.slide = *get("pivot_x") - *get("pivot_x_start");
       p.rotation = std::abs(*get("rotation") - *get("rotation_start"));
       const bool slides = p.slide > s.slide_threshold, rotates = p.rotation > s.rotation_threshold;
       p.dem = slides ? (rotates ? 3 : 1) : (rotates ? 2 : 0);
-    });
+    }
     const char code[] = {'.', 'S', 'T', 'X'};
     std::ostringstream map;
     map << "alpha (deg):          ";
@@ -832,7 +873,9 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   } else {  // stability: bisection on the parameter, per variant
     std::vector<std::optional<double>> limits(s.variants.size());
     std::vector<std::string> notes(s.variants.size());
-    parallel_for(s.variants.size(), opt.jobs, [&](std::size_t vi) {
+    // Under MPI every variant's bisection runs at once (each waits for one run at a time).
+    const int threads = run_distributor() ? std::max<int>(opt.jobs, static_cast<int>(s.variants.size())) : opt.jobs;
+    parallel_for(s.variants.size(), threads, [&](std::size_t vi) {
       const Variant& v = s.variants[vi];
       auto stable = [&](double x) {
         std::vector<std::string> sets = s.set;
