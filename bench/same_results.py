@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Behaviour-neutral check of an optimisation (bench/README.md): runs every cases/*/*.toml with two dem2d
-builds (`dem2d run CASE --out DIR`, plus any extra arguments of each build) and compares series.csv, every
-file under vtk/, and summary.json without provenance and timings, byte for byte / value for value.
+builds (`dem2d run CASE --out DIR`, plus any extra arguments of each build) and compares series.csv (without its
+`#` provenance lines), every file under vtk/, and summary.json without provenance and timings, byte for byte / value
+for value.
 
     python3 bench/same_results.py BEFORE AFTER [--after-args "--threads 2"] [--out DIR] [--jobs 2]
                                   [--set numerics.duration=...] [CASE ...]
@@ -38,11 +39,16 @@ def run(binary, extra, case, out, sets):
     return r.returncode, r.stdout[-500:]
 
 
+def data(path):
+    """The file without its provenance comment lines (`# ...`: the code version)."""
+    return [l for l in path.read_bytes().splitlines() if not l.startswith(b"#")]
+
+
 def compare(a, b):
     diffs = []
     fa, fb = a / "series.csv", b / "series.csv"
     if fa.exists() or fb.exists():
-        if not (fa.exists() and fb.exists()) or fa.read_bytes() != fb.read_bytes():
+        if not (fa.exists() and fb.exists()) or data(fa) != data(fb):
             diffs.append("series.csv")
     va = sorted(p.relative_to(a) for p in (a / "vtk").rglob("*") if p.is_file()) if (a / "vtk").exists() else []
     vb = sorted(p.relative_to(b) for p in (b / "vtk").rglob("*") if p.is_file()) if (b / "vtk").exists() else []
@@ -65,7 +71,7 @@ def main():
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--set", action="append", default=[])
     ap.add_argument("cases", nargs="*")
-    a = ap.parse_args()
+    a = ap.parse_intermixed_args()
     out = a.out or Path(tempfile.mkdtemp(prefix="dem2d-same."))
     cases = [Path(c) for c in a.cases] or sorted(ROOT.glob("cases/*/*.toml"))
 

@@ -392,6 +392,7 @@ struct RunOut {
 struct RunCache {
   fs::path dir;  // empty: no cache
   std::atomic<int> reused{0}, ran{0};
+  int threads_per_run = 1;  // the cores left to each run by the study's own parallel runs (--jobs)
 };
 
 RunCache* g_cache = nullptr;  // the cache of the study being run (run_study sets it)
@@ -410,6 +411,7 @@ RunOut run_one(const Study& s, const std::vector<std::string>& sets, const fs::p
   }
   dem::RunOptions o;  // files only for runs that feed a figure
   o.out_dir = out;
+  o.threads = g_cache ? g_cache->threads_per_run : 1;  // results do not depend on it
   const dem::RunResult r = dem::run_case(c, o);
   if (r.status == "interrupted") throw StudyInterrupted(fmt::format("study {}: {}", s.name, r.message));
   if (!entry.empty()) {
@@ -437,6 +439,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   cache.dir = out / "cache";
   if (!opt.use_cache) fs::remove_all(cache.dir);  // --fresh: forget earlier runs, record the new ones
   fs::create_directories(cache.dir);
+  cache.threads_per_run = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / std::max(1, opt.jobs));
   g_cache = &cache;
   struct Reset {
     ~Reset() { g_cache = nullptr; }
