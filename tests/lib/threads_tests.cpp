@@ -39,7 +39,7 @@ TEST_CASE("The state after every step is the same bit for bit on 1, 2 and 3 thre
     std::vector<dem::Simulation> sims;
     for (int t = 1; t <= 3; ++t) {
       sims.emplace_back(c.model);
-      sims.back().set_threads(t);
+      sims.back().set_threads(t, 1);  // every case on t threads, however small
     }
     REQUIRE(dem::simulation_state(sims[0]) == dem::simulation_state(sims[1]));
     REQUIRE(dem::simulation_state(sims[0]) == dem::simulation_state(sims[2]));
@@ -68,6 +68,7 @@ TEST_CASE("Every output file of a run is the same bit for bit on 1 and 3 threads
       dem::RunOptions o;
       o.out_dir = test::fresh_dir("dem2d_threads", std::string(std::filesystem::path(path).stem()) + "_t" + std::to_string(t));
       o.threads = t;
+      o.min_per_thread = 1;
       const dem::RunResult r = dem::run_case(c, o);
       REQUIRE(r.status == "completed");
       outs.push_back(o.out_dir);
@@ -84,12 +85,19 @@ TEST_CASE("Every output file of a run is the same bit for bit on 1 and 3 threads
   }
 }
 
-TEST_CASE("A thread count below one means one thread", "[threads]") {
-  dem::Simulation sim(dem::read_case(test::source("cases/pre/small_rotation.toml")).model);
+TEST_CASE("A thread count below one means one thread, and small runs use fewer threads", "[threads]") {
+  dem::Simulation sim(dem::read_case(test::source("cases/beam/mortar_2x8.toml")).model);
+  const std::size_t n = sim.model().elements.size();
+  REQUIRE(n >= 16);
   sim.set_threads(0);
   CHECK(sim.threads() == 1);
   sim.set_threads(-3);
   CHECK(sim.threads() == 1);
   sim.set_threads(4);
   CHECK(sim.threads() == 4);
+  CHECK(sim.threads_used() == 1);  // fewer than 4096 elements per thread
+  sim.set_threads(4, 1);
+  CHECK(sim.threads_used() == 4);
+  sim.set_threads(4, n / 2);
+  CHECK(sim.threads_used() == 2);
 }

@@ -159,7 +159,7 @@ void Simulation::apply_preloads() {
     w.increment = {};
   }
   preloading_ = true;
-  on_threads(threads_, [&](int t, int nt) {
+  on_threads(threads_used(), [&](int t, int nt) {
     sweep_slots(0.0, t, nt);
 #pragma omp barrier
     const auto [b, end] = share(e.size(), t, nt);
@@ -608,6 +608,11 @@ void Simulation::sweep_face_walls(double inv_dt, std::size_t b, std::size_t end)
   }
 }
 
+int Simulation::threads_used() const {
+  const std::size_t most = std::max<std::size_t>(1, m_.elements.size() / min_per_thread_);
+  return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads_), most));
+}
+
 bool Simulation::all_free() const {
   // The usual case, every element active and free: the same operations per element, in branch-free
   // loops that the compiler vectorises (the lanes round exactly as the scalar code; no FMA contraction).
@@ -691,7 +696,7 @@ void Simulation::step() {
   const bool plate = m_.base_plate.enabled;
   const double dt_v = velocity_dt();
   const bool free_only = all_free();
-  on_threads(threads_, [&](int t, int nt) {
+  on_threads(threads_used(), [&](int t, int nt) {
     sweep_slots(inv_dt, t, nt);  // every contact law (K5–K14, M3–M12) into its slot
 #pragma omp barrier
     const auto [b, end] = share(n, t, nt);
@@ -701,7 +706,7 @@ void Simulation::step() {
   sum_wall_forces();
   if (plate) {
     advance_base_plate();
-    on_threads(threads_, [&](int t, int nt) {
+    on_threads(threads_used(), [&](int t, int nt) {
       const auto [b, end] = share(n, t, nt);
       integrate_range(b, end, dt_v, free_only);
     });

@@ -73,8 +73,14 @@ class Simulation {
   /// Threads used inside a step (1: none). Results do not depend on it, bit for bit: every contact's
   /// force is computed once into its slot, then each element sums its contacts in one fixed order
   /// (contact_index.hpp), whatever thread computes what.
-  void set_threads(int threads) { threads_ = threads < 1 ? 1 : threads; }
+  /// A thread takes at least `min_per_thread` elements (a step of fewer elements is faster on one
+  /// thread: the threads' start and barrier cost more than they save); tests lower it to 1.
+  void set_threads(int threads, std::size_t min_per_thread = 4096) {
+    threads_ = threads < 1 ? 1 : threads;
+    min_per_thread_ = min_per_thread < 1 ? 1 : min_per_thread;
+  }
   int threads() const { return threads_; }
+  int threads_used() const;  // what a step uses: threads() limited by min_per_thread
 
  private:
   friend struct SimulationAccess;  // checkpoints (run/checkpoint.cpp) save and restore the whole state
@@ -108,6 +114,7 @@ class Simulation {
   ContactIndex index_;                        // each element's slots in the fixed summation order
   std::vector<ElementPush> face_push_, face_wall_push_;  // this step's face forces on the elements
   int threads_ = 1;
+  std::size_t min_per_thread_ = 4096;
   std::vector<double> x_ref_, y_ref_;  // positions at the last rebuild
   std::vector<Vec2> wall_ref_;
   double skin_ = 0.0;
