@@ -81,6 +81,11 @@ bool any_displaced(const double* __restrict x, const double* __restrict y, const
   }
   return (all_negative >> 63) == 0;
 }
+/// f = m g (K15).
+void weight(double* __restrict f, const double* __restrict m, double g, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) f[i] = m[i] * g;
+}
+
 /// Runs body(thread, threads) on `threads` threads (OpenMP), or body(0, 1) on the caller's. A
 /// `#pragma omp barrier` inside body synchronises the threads (and does nothing on one thread).
 template <class Body>
@@ -159,12 +164,16 @@ void Simulation::apply_preloads() {
     w.increment = {};
   }
   preloading_ = true;
-  on_threads(threads_used(), [&](int t, int nt) {
-    sweep_slots(0.0, t, nt);
+  if (threads_used() == 1) {
+    sweep_scatter(0.0);  // onto the forces the elements hold
+  } else {
+    on_threads(threads_used(), [&](int t, int nt) {
+      sweep_slots(0.0, t, nt);
 #pragma omp barrier
-    const auto [b, end] = share(e.size(), t, nt);
-    gather_forces(b, end, false);  // onto the forces the elements hold
-  });
+      const auto [b, end] = share(e.size(), t, nt);
+      gather_forces(b, end, false);  // onto the forces the elements hold
+    });
+  }
   sum_wall_forces();
   preloading_ = false;
   for (std::size_t k = 0; k < m_.walls.size(); ++k) m_.walls[k].increment = wall_inc[k];
@@ -259,22 +268,29 @@ void Simulation::index_contacts() {
   face_wall_push_.resize(face_walls_.size());
 }
 
+void Simulation::sweep_scatter(double inv_dt) {
+  sweep_linear_pairs<true>(inv_dt, 0, linear_pairs_.size());
+  sweep_face_pairs<true>(inv_dt, 0, face_pairs_.size());
+  sweep_linear_walls<true>(inv_dt, 0, linear_walls_.size());
+  sweep_face_walls<true>(inv_dt, 0, face_walls_.size());
+}
+
 void Simulation::sweep_slots(double inv_dt, int t, int nt) {
   {
     const auto [b, e] = share(linear_pairs_.size(), t, nt);
-    sweep_linear_pairs(inv_dt, b, e);
+    sweep_linear_pairs<false>(inv_dt, b, e);
   }
   {
     const auto [b, e] = share(face_pairs_.size(), t, nt);
-    sweep_face_pairs(inv_dt, b, e);
+    sweep_face_pairs<false>(inv_dt, b, e);
   }
   {
     const auto [b, e] = share(linear_walls_.size(), t, nt);
-    sweep_linear_walls(inv_dt, b, e);
+    sweep_linear_walls<false>(inv_dt, b, e);
   }
   {
     const auto [b, e] = share(face_walls_.size(), t, nt);
-    sweep_face_walls(inv_dt, b, e);
+    sweep_face_walls<false>(inv_dt, b, e);
   }
 }
 
@@ -412,6 +428,7 @@ void Simulation::start_linear(LinearSlot& s, double overlap, double du_n, double
   }
 }
 
+template <bool Scatter>
 void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
   const double* const x = e.x.data();
@@ -421,6 +438,9 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
   const double* const dx = e.dx.data();
   const double* const dy = e.dy.data();
   const double* const dphi = e.dphi.data();
+  [[maybe_unused]] double* const fx_e = e.fx.data();  // Scatter (local pointers: no reloads after stores)
+  [[maybe_unused]] double* const fy_e = e.fy.data();
+  [[maybe_unused]] double* const moment = e.moment.data();
   const PairLaw* const laws = m_.laws.data();
   LinearSlot* const slots = linear_pairs_.data();
   for (std::size_t k = b; k < end; ++k) {
@@ -445,14 +465,25 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
       reset_slot(s);
       continue;
     }
-    s.f = f;  // gather_forces adds it to i and j (K15)
+    s.f = f;  // gather_forces adds it to i and j (K15), or:
     s.nx = nx;
     s.ny = ny;
+    if constexpr (Scatter) {
+      // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
+      const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;
+      fx_e[i] += fx;
+      fy_e[i] += fy;
+      fx_e[j] -= fx;
+      fy_e[j] -= fy;
+      moment[i] -= radius[i] * f.fs;
+      moment[j] -= radius[j] * f.fs;
+    }
   }
 }
 
+template <bool Scatter>
 void Simulation::sweep_linear_walls(double inv_dt, std::size_t b, std::size_t end) {
-  const Elements& e = m_.elements;
+  Elements& e = m_.elements;
   for (std::size_t k = b; k < end; ++k) {
     LinearSlot& s = linear_walls_[k];
     const std::uint32_t i = s.i;
@@ -479,6 +510,11 @@ void Simulation::sweep_linear_walls(double inv_dt, std::size_t b, std::size_t en
     s.f = f;  // gather_forces and sum_wall_forces add it
     s.nx = nx;
     s.ny = ny;
+    if constexpr (Scatter) {
+      e.fx[i] += -f.fn * nx + f.fs * ny;
+      e.fy[i] += -f.fn * ny - f.fs * nx;
+      e.moment[i] -= r * f.fs;
+    }
   }
 }
 
@@ -505,8 +541,9 @@ FaceConstants face_constants(const PairLaw& law, double r_i, double r_j, double 
   return c;
 }
 
+template <bool Scatter>
 void Simulation::sweep_face_pairs(double inv_dt, std::size_t b, std::size_t end) {
-  const Elements& e = m_.elements;
+  Elements& e = m_.elements;
   for (std::size_t n = b; n < end; ++n) {
     FaceSlot& s = face_pairs_[n];
     ElementPush& push = face_push_[n];
@@ -557,11 +594,20 @@ void Simulation::sweep_face_pairs(double inv_dt, std::size_t b, std::size_t end)
     push.mi = -e.radius[i] * f.q + f.p_moment;
     push.mj = -e.radius[j] * f.q - f.p_moment;
     push.applied = 1;
+    if constexpr (Scatter) {
+      e.fx[i] += push.fx;
+      e.fy[i] += push.fy;
+      e.fx[j] -= push.fx;
+      e.fy[j] -= push.fy;
+      e.moment[i] += push.mi;
+      e.moment[j] += push.mj;
+    }
   }
 }
 
+template <bool Scatter>
 void Simulation::sweep_face_walls(double inv_dt, std::size_t b, std::size_t end) {
-  const Elements& e = m_.elements;
+  Elements& e = m_.elements;
   for (std::size_t n = b; n < end; ++n) {
     FaceSlot& s = face_walls_[n];
     ElementPush& push = face_wall_push_[n];
@@ -605,6 +651,11 @@ void Simulation::sweep_face_walls(double inv_dt, std::size_t b, std::size_t end)
     push.fy = -f.p * ny - f.q * nx;
     push.mi = -r * f.q + f.p_moment;
     push.applied = 1;
+    if constexpr (Scatter) {
+      e.fx[i] += push.fx;
+      e.fy[i] += push.fy;
+      e.moment[i] += push.mi;
+    }
   }
 }
 
@@ -696,13 +747,23 @@ void Simulation::step() {
   const bool plate = m_.base_plate.enabled;
   const double dt_v = velocity_dt();
   const bool free_only = all_free();
-  on_threads(threads_used(), [&](int t, int nt) {
-    sweep_slots(inv_dt, t, nt);  // every contact law (K5–K14, M3–M12) into its slot
+  const int nt = threads_used();
+  if (nt == 1) {  // each slot adds its forces at once, in slot order (the order gather_forces keeps)
+    Elements& e = m_.elements;
+    weight(e.fx.data(), e.mass.data(), m_.gravity.x, n);  // (K15): gravity
+    weight(e.fy.data(), e.mass.data(), m_.gravity.y, n);
+    std::fill(e.moment.begin(), e.moment.end(), 0.0);
+    sweep_scatter(inv_dt);
+    if (!plate) integrate_range(0, n, dt_v, free_only);
+  } else {
+    on_threads(nt, [&](int t, int nt_) {
+      sweep_slots(inv_dt, t, nt_);  // every contact law (K5–K14, M3–M12) into its slot
 #pragma omp barrier
-    const auto [b, end] = share(n, t, nt);
-    gather_forces(b, end, true);  // (K15): m g plus the contacts, per element in a fixed order
-    if (!plate) integrate_range(b, end, dt_v, free_only);  // (K17), (K18) or (K19)
-  });
+      const auto [b, end] = share(n, t, nt_);
+      gather_forces(b, end, true);  // (K15): m g plus the contacts, per element in a fixed order
+      if (!plate) integrate_range(b, end, dt_v, free_only);  // (K17), (K18) or (K19)
+    });
+  }
   sum_wall_forces();
   if (plate) {
     advance_base_plate();

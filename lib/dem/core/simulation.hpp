@@ -89,10 +89,13 @@ class Simulation {
   bool needs_rebuild() const;
   // The contact laws of slots [b, e): each writes its forces into its slot (and face_push_), never into
   // the elements, so slots can be computed in any order and on any thread.
-  void sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t e);
-  void sweep_face_pairs(double inv_dt, std::size_t b, std::size_t e);
-  void sweep_linear_walls(double inv_dt, std::size_t b, std::size_t e);
-  void sweep_face_walls(double inv_dt, std::size_t b, std::size_t e);
+  // Scatter (one thread): each slot also adds its forces to its elements at once, in slot order; this
+  // is the order gather_forces reproduces per element, so both give the same forces bit for bit.
+  template <bool Scatter> void sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t e);
+  template <bool Scatter> void sweep_face_pairs(double inv_dt, std::size_t b, std::size_t e);
+  template <bool Scatter> void sweep_linear_walls(double inv_dt, std::size_t b, std::size_t e);
+  template <bool Scatter> void sweep_face_walls(double inv_dt, std::size_t b, std::size_t e);
+  void sweep_scatter(double inv_dt);  // one thread: every slot, scattering into the elements
   void gather_forces(std::size_t b, std::size_t e, bool from_weight);  // elements [b, e) sum their contacts
   void sum_wall_forces();
   void index_contacts();  // after every change of the slot lists (rebuild, restore)
