@@ -10,8 +10,12 @@ sequences, no random numbers), and lifted so that every disk clears its neighbou
 contact distance: all gaps are open at the start. Under gravity the rows land one on another, slide into
 the uneven nests and settle as a disordered packing with about two contacts per disk."""
 import math
+import sys
 
-ROWS, COLS = 50, 200
+# Scaled variants for the suite (bench/suite.py): make_settle_case.py ROWS COLS STEPS; the defaults give
+# the checked-in 10^4 case byte for byte.
+ROWS, COLS, STEPS = (int(a) for a in sys.argv[1:4]) if len(sys.argv) > 3 else (50, 200, 10000)
+SCALED = len(sys.argv) > 3
 R_MIN, R_MAX = 0.90e-3, 1.00e-3   # [m]
 SX = 2.04e-3                      # step along a row [m] (> 2 R_MAX: neighbours in a row never touch at start)
 GAP = 0.01                        # clearance between rows, fraction of the contact distance
@@ -48,7 +52,7 @@ print(f"""# Benchmark: a settle of 10^4 disks with linear contacts (bench/README
 # one on another, slide into their nests and settle as a disordered packing in a box of four walls.
 # bench/run.sh runs the same setup in LAMMPS and compares the speed. Plain numbers are SI units.
 [case]
-title = "Settle of 10^4 disks (benchmark)"
+title = "{f'Settle of {ROWS * COLS} disks (benchmark, scaled)' if SCALED else 'Settle of 10^4 disks (benchmark)'}"
 source = "bench/README.md"
 
 [physics]
@@ -95,10 +99,10 @@ start = [{xs[k]!r}, {ys[k]!r}]
 step = [{SX!r}, 0.0]
 count = {COLS}
 """)
-print("""[numerics]
+print(f"""[numerics]
 integrator = "K18"
 dt = 4.0e-6                # s, about a third of the stability limit (dem2d check)
-duration = 0.04            # s: 10^4 steps: the rows collapse, land (about 20 ms), rebound and settle
+{f'duration = {STEPS * 4.0e-6!r}' if SCALED else 'duration = 0.04            # s: 10^4 steps: the rows collapse, land (about 20 ms), rebound and settle'}
 # skin: the default, a quarter of the smallest radius (0.225 mm)
 
 [output]

@@ -7,6 +7,9 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "dem/core/stability.hpp"
 
@@ -16,13 +19,14 @@ namespace {
 
 inline std::uint64_t key(std::uint32_t i, std::uint32_t j) { return (std::uint64_t{i} << 32) | j; }
 
-/// Merges the old (sorted) slots into the new (sorted) candidate keys: a candidate keeps its old
-/// history if it had one; an old slot that must outlive the rebuild is kept even without candidate.
-template <class Slot, class Candidates>
-void merge(std::vector<Slot>& slots, std::vector<Slot>& scratch, const Candidates& cand) {
+/// Merges the old (sorted) slots into the new (sorted) candidates, which next(c) yields one by one as
+/// fresh slots (false at the end; no list of fresh slots is stored): a candidate keeps its old history
+/// if it had one; an old slot that must outlive the rebuild is kept even without candidate.
+template <class Slot, class Next>
+void merge(std::vector<Slot>& slots, std::vector<Slot>& scratch, Next&& next) {
   scratch.clear();
   std::size_t o = 0;
-  for (const Slot& c : cand) {
+  for (Slot c; next(c);) {
     const std::uint64_t kc = key(c.i, c.j);
     while (o < slots.size() && key(slots[o].i, slots[o].j) < kc) {
       if (must_keep(slots[o])) scratch.push_back(slots[o]);
@@ -82,6 +86,27 @@ void weight(double* __restrict f, const double* __restrict m, double g, std::siz
   for (std::size_t i = 0; i < n; ++i) f[i] = m[i] * g;
 }
 
+/// Runs body(thread, threads) on `threads` threads (OpenMP), or body(0, 1) on the caller's. A
+/// `#pragma omp barrier` inside body synchronises the threads (and does nothing on one thread).
+template <class Body>
+void on_threads(int threads, Body&& body) {
+#ifdef _OPENMP
+  if (threads > 1) {
+#pragma omp parallel num_threads(threads)
+    body(omp_get_thread_num(), omp_get_num_threads());
+    return;
+  }
+#endif
+  (void)threads;
+  body(0, 1);
+}
+
+/// The part [b, e) of n items that thread t of nt takes.
+inline std::pair<std::size_t, std::size_t> share(std::size_t n, int t, int nt) {
+  return {n * static_cast<std::size_t>(t) / static_cast<std::size_t>(nt),
+          n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(nt)};
+}
+
 }  // namespace
 
 Simulation::Simulation(Model model) : m_(std::move(model)) {
@@ -139,10 +164,17 @@ void Simulation::apply_preloads() {
     w.increment = {};
   }
   preloading_ = true;
-  sweep_linear_pairs(0.0);
-  sweep_face_pairs(0.0);
-  sweep_linear_walls(0.0);
-  sweep_face_walls(0.0);
+  if (threads_used() == 1) {
+    sweep_scatter(0.0);  // onto the forces the elements hold
+  } else {
+    on_threads(threads_used(), [&](int t, int nt) {
+      sweep_slots(0.0, t, nt);
+#pragma omp barrier
+      const auto [b, end] = share(e.size(), t, nt);
+      gather_forces(b, end, false);  // onto the forces the elements hold
+    });
+  }
+  sum_wall_forces();
   preloading_ = false;
   for (std::size_t k = 0; k < m_.walls.size(); ++k) m_.walls[k].increment = wall_inc[k];
   e.dx = keep_dx;
@@ -172,27 +204,25 @@ void Simulation::rebuild() {
   ++rebuilds_;
   const Elements& e = m_.elements;
   search_.build(e, skin_, candidates_);
-  // Fresh slots for every candidate, routed by the pair's law.
-  std::vector<LinearSlot>& lin = linear_fresh_;  // fresh slots for the candidates, routed by law
+  // A fresh slot for every candidate, routed by the pair's law: yielded one by one into the merge.
+  auto fresh_pairs = [&](LawKind kind) {
+    return [this, &e, kind, c = std::size_t{0}](auto& s) mutable {
+      while (c < candidates_.size()) {
+        const CandidatePair& p = candidates_[c++];
+        const std::int32_t law = m_.law_index(e.material[p.i], e.material[p.j]);
+        if (law < 0 || m_.laws[static_cast<std::size_t>(law)].kind != kind) continue;
+        s = {};
+        s.i = p.i, s.j = p.j, s.law = law;
+        return true;
+      }
+      return false;
+    };
+  };
+  merge(linear_pairs_, linear_scratch_, fresh_pairs(LawKind::linear));
+  merge(face_pairs_, face_scratch_, fresh_pairs(LawKind::face));
+  // Element–wall candidates (few: the elements near a wall).
+  std::vector<LinearSlot>& lin = linear_fresh_;
   std::vector<FaceSlot>& face = face_fresh_;
-  lin.clear();
-  face.clear();
-  for (const CandidatePair& p : candidates_) {
-    const std::int32_t law = m_.law_index(e.material[p.i], e.material[p.j]);
-    if (law < 0) continue;
-    if (m_.laws[static_cast<std::size_t>(law)].kind == LawKind::linear) {
-      LinearSlot s;
-      s.i = p.i, s.j = p.j, s.law = law;
-      lin.push_back(s);
-    } else {
-      FaceSlot s;
-      s.i = p.i, s.j = p.j, s.law = law;
-      face.push_back(s);
-    }
-  }
-  merge(linear_pairs_, linear_scratch_, lin);
-  merge(face_pairs_, face_scratch_, face);
-  // Element–wall candidates.
   lin.clear();
   face.clear();
   for (std::uint32_t i = 0; i < e.size(); ++i) {
@@ -216,12 +246,152 @@ void Simulation::rebuild() {
       }
     }
   }
-  merge(linear_walls_, linear_scratch_, lin);
-  merge(face_walls_, face_scratch_, face);
+  auto from = [](const auto& list) {
+    return [&list, c = std::size_t{0}](auto& s) mutable {
+      if (c == list.size()) return false;
+      s = list[c++];
+      return true;
+    };
+  };
+  merge(linear_walls_, linear_scratch_, from(lin));
+  merge(face_walls_, face_scratch_, from(face));
   x_ref_ = e.x;
   y_ref_ = e.y;
   wall_ref_.resize(m_.walls.size());
   for (std::size_t k = 0; k < m_.walls.size(); ++k) wall_ref_[k] = m_.walls[k].a;
+  index_contacts();
+}
+
+void Simulation::index_contacts() {
+  index_.build(m_.elements.size(), linear_pairs_, face_pairs_, linear_walls_, face_walls_);
+  face_push_.resize(face_pairs_.size());
+  face_wall_push_.resize(face_walls_.size());
+}
+
+void Simulation::sweep_scatter(double inv_dt) {
+  sweep_linear_pairs<true>(inv_dt, 0, linear_pairs_.size());
+  sweep_face_pairs<true>(inv_dt, 0, face_pairs_.size());
+  sweep_linear_walls<true>(inv_dt, 0, linear_walls_.size());
+  sweep_face_walls<true>(inv_dt, 0, face_walls_.size());
+}
+
+void Simulation::sweep_slots(double inv_dt, int t, int nt) {
+  {
+    const auto [b, e] = share(linear_pairs_.size(), t, nt);
+    sweep_linear_pairs<false>(inv_dt, b, e);
+  }
+  {
+    const auto [b, e] = share(face_pairs_.size(), t, nt);
+    sweep_face_pairs<false>(inv_dt, b, e);
+  }
+  {
+    const auto [b, e] = share(linear_walls_.size(), t, nt);
+    sweep_linear_walls<false>(inv_dt, b, e);
+  }
+  {
+    const auto [b, e] = share(face_walls_.size(), t, nt);
+    sweep_face_walls<false>(inv_dt, b, e);
+  }
+}
+
+// Each element sums what its slots computed, in the fixed order of the contact index, with the very
+// operations the one-thread sweeps performed (f_i += f, f_j −= f; K15, M12): the same sums bit for bit.
+// A slot that added nothing this step is skipped by adding −0 (x + (−0) = x) or subtracting +0 (x − 0 = x)
+// for every x, also x = −0, without a branch.
+void Simulation::gather_forces(std::size_t b, std::size_t end, bool from_weight) {
+  Elements& e = m_.elements;
+  const double* const mass = e.mass.data();
+  const double* const radius = e.radius.data();
+  double* const fx_e = e.fx.data();
+  double* const fy_e = e.fy.data();
+  double* const moment = e.moment.data();
+  const LinearSlot* const lp = linear_pairs_.data();
+  const LinearSlot* const lw = linear_walls_.data();
+  const ElementPush* const fp = face_push_.data();
+  const ElementPush* const fw = face_wall_push_.data();
+  const std::uint32_t* const ls = index_.linear_start.data();
+  const std::uint32_t* const li = index_.linear_items.data();
+  const std::uint32_t* const os = index_.other_start.data();
+  const std::uint32_t* const oi = index_.other_items.data();
+  const Vec2 g = m_.gravity;
+  for (std::size_t k = b; k < end; ++k) {
+    double fx = from_weight ? mass[k] * g.x : fx_e[k];  // (K15): gravity, m g
+    double fy = from_weight ? mass[k] * g.y : fy_e[k];
+    double mom = from_weight ? 0.0 : moment[k];
+    const double r = radius[k];
+    for (std::uint32_t n = ls[k]; n < ls[k + 1]; ++n) {
+      const std::uint32_t entry = li[n];
+      const LinearSlot& s = lp[ContactIndex::linear_slot(entry)];
+      const bool on = s.touching != 0;
+      // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
+      const double sfx = -s.f.fn * s.nx + s.f.fs * s.ny, sfy = -s.f.fn * s.ny - s.f.fs * s.nx;
+      if (ContactIndex::is_j(entry)) {
+        fx -= on ? sfx : 0.0;
+        fy -= on ? sfy : 0.0;
+      } else {
+        fx += on ? sfx : -0.0;
+        fy += on ? sfy : -0.0;
+      }
+      mom -= on ? r * s.f.fs : 0.0;
+    }
+    for (std::uint32_t n = os[k]; n < os[k + 1]; ++n) {
+      const std::uint32_t entry = oi[n];
+      const std::uint32_t slot = ContactIndex::other_slot(entry);
+      switch (ContactIndex::other_kind(entry)) {
+        case SlotKind::face_pair: {
+          const ElementPush& p = fp[slot];
+          const bool on = p.applied != 0;
+          if (ContactIndex::is_j(entry)) {
+            fx -= on ? p.fx : 0.0;
+            fy -= on ? p.fy : 0.0;
+            mom += on ? p.mj : -0.0;
+          } else {
+            fx += on ? p.fx : -0.0;
+            fy += on ? p.fy : -0.0;
+            mom += on ? p.mi : -0.0;
+          }
+          break;
+        }
+        case SlotKind::linear_wall: {
+          const LinearSlot& s = lw[slot];
+          const bool on = s.touching != 0;
+          fx += on ? -s.f.fn * s.nx + s.f.fs * s.ny : -0.0;
+          fy += on ? -s.f.fn * s.ny - s.f.fs * s.nx : -0.0;
+          mom -= on ? r * s.f.fs : 0.0;
+          break;
+        }
+        case SlotKind::face_wall: {
+          const ElementPush& p = fw[slot];
+          const bool on = p.applied != 0;
+          fx += on ? p.fx : -0.0;
+          fy += on ? p.fy : -0.0;
+          mom += on ? p.mi : -0.0;
+          break;
+        }
+      }
+    }
+    fx_e[k] = fx;
+    fy_e[k] = fy;
+    moment[k] = mom;
+  }
+}
+
+/// The walls' reactions, in slot order (linear wall slots, then face wall slots), as the sweeps summed them.
+void Simulation::sum_wall_forces() {
+  for (const LinearSlot& s : linear_walls_) {
+    if (!s.touching) continue;
+    Wall& w = m_.walls[s.j];
+    const double fx = -s.f.fn * s.nx + s.f.fs * s.ny, fy = -s.f.fn * s.ny - s.f.fs * s.nx;
+    w.force.x -= fx;
+    w.force.y -= fy;
+  }
+  for (std::size_t n = 0; n < face_walls_.size(); ++n) {
+    const ElementPush& p = face_wall_push_[n];
+    if (!p.applied) continue;
+    Wall& w = m_.walls[face_walls_[n].j];
+    w.force.x -= p.fx;
+    w.force.y -= p.fy;
+  }
 }
 
 Dashpots linear_dashpots(const PairLaw& law, double mass_i, double mass_j) {
@@ -258,7 +428,8 @@ void Simulation::start_linear(LinearSlot& s, double overlap, double du_n, double
   }
 }
 
-void Simulation::sweep_linear_pairs(double inv_dt) {
+template <bool Scatter>
+void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
   const double* const x = e.x.data();
   const double* const y = e.y.data();
@@ -267,11 +438,13 @@ void Simulation::sweep_linear_pairs(double inv_dt) {
   const double* const dx = e.dx.data();
   const double* const dy = e.dy.data();
   const double* const dphi = e.dphi.data();
-  double* const fx_e = e.fx.data();
-  double* const fy_e = e.fy.data();
-  double* const moment = e.moment.data();
+  [[maybe_unused]] double* const fx_e = e.fx.data();  // Scatter (local pointers: no reloads after stores)
+  [[maybe_unused]] double* const fy_e = e.fy.data();
+  [[maybe_unused]] double* const moment = e.moment.data();
   const PairLaw* const laws = m_.laws.data();
-  for (LinearSlot& s : linear_pairs_) {
+  LinearSlot* const slots = linear_pairs_.data();
+  for (std::size_t k = b; k < end; ++k) {
+    LinearSlot& s = slots[k];
     const std::uint32_t i = s.i, j = s.j;
     const double ddx = x[j] - x[i], ddy = y[j] - y[i];
     const double rs = radius[i] + radius[j];
@@ -292,25 +465,29 @@ void Simulation::sweep_linear_pairs(double inv_dt) {
       reset_slot(s);
       continue;
     }
-    s.f = f;
+    s.f = f;  // gather_forces adds it to i and j (K15), or:
     s.nx = nx;
     s.ny = ny;
-    // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
-    const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;
-    fx_e[i] += fx;
-    fy_e[i] += fy;
-    fx_e[j] -= fx;
-    fy_e[j] -= fy;
-    moment[i] -= radius[i] * f.fs;
-    moment[j] -= radius[j] * f.fs;
+    if constexpr (Scatter) {
+      // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
+      const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;
+      fx_e[i] += fx;
+      fy_e[i] += fy;
+      fx_e[j] -= fx;
+      fy_e[j] -= fy;
+      moment[i] -= radius[i] * f.fs;
+      moment[j] -= radius[j] * f.fs;
+    }
   }
 }
 
-void Simulation::sweep_linear_walls(double inv_dt) {
+template <bool Scatter>
+void Simulation::sweep_linear_walls(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
-  for (LinearSlot& s : linear_walls_) {
+  for (std::size_t k = b; k < end; ++k) {
+    LinearSlot& s = linear_walls_[k];
     const std::uint32_t i = s.i;
-    Wall& w = m_.walls[s.j];
+    const Wall& w = m_.walls[s.j];
     const Vec2 c{e.x[i], e.y[i]};
     const Vec2 d = closest_point(w, c) - c;
     const double r2 = dot(d, d), r = e.radius[i];
@@ -330,15 +507,14 @@ void Simulation::sweep_linear_walls(double inv_dt) {
       reset_slot(s);
       continue;
     }
-    s.f = f;
+    s.f = f;  // gather_forces and sum_wall_forces add it
     s.nx = nx;
     s.ny = ny;
-    const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;
-    e.fx[i] += fx;
-    e.fy[i] += fy;
-    e.moment[i] -= r * f.fs;
-    w.force.x -= fx;
-    w.force.y -= fy;
+    if constexpr (Scatter) {
+      e.fx[i] += -f.fn * nx + f.fs * ny;
+      e.fy[i] += -f.fn * ny - f.fs * nx;
+      e.moment[i] -= r * f.fs;
+    }
   }
 }
 
@@ -365,9 +541,13 @@ FaceConstants face_constants(const PairLaw& law, double r_i, double r_j, double 
   return c;
 }
 
-void Simulation::sweep_face_pairs(double inv_dt) {
+template <bool Scatter>
+void Simulation::sweep_face_pairs(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
-  for (FaceSlot& s : face_pairs_) {
+  for (std::size_t n = b; n < end; ++n) {
+    FaceSlot& s = face_pairs_[n];
+    ElementPush& push = face_push_[n];
+    push.applied = 0;
     const std::uint32_t i = s.i, j = s.j;
     if (!e.active[i] || !e.active[j]) {
       if (s.touching) reset_slot(s);
@@ -409,21 +589,31 @@ void Simulation::sweep_face_pairs(double inv_dt) {
     s.nx = nx;
     s.ny = ny;
     if (f.links == 0) s.touching = 0;  // touching → not touching when no link remains
-    const double fx = -f.p * nx + f.q * ny, fy = -f.p * ny - f.q * nx;  // (M12)
-    e.fx[i] += fx;
-    e.fy[i] += fy;
-    e.fx[j] -= fx;
-    e.fy[j] -= fy;
-    e.moment[i] += -e.radius[i] * f.q + f.p_moment;
-    e.moment[j] += -e.radius[j] * f.q - f.p_moment;
+    push.fx = -f.p * nx + f.q * ny;  // (M12): on i; on j the opposite
+    push.fy = -f.p * ny - f.q * nx;
+    push.mi = -e.radius[i] * f.q + f.p_moment;
+    push.mj = -e.radius[j] * f.q - f.p_moment;
+    push.applied = 1;
+    if constexpr (Scatter) {
+      e.fx[i] += push.fx;
+      e.fy[i] += push.fy;
+      e.fx[j] -= push.fx;
+      e.fy[j] -= push.fy;
+      e.moment[i] += push.mi;
+      e.moment[j] += push.mj;
+    }
   }
 }
 
-void Simulation::sweep_face_walls(double inv_dt) {
+template <bool Scatter>
+void Simulation::sweep_face_walls(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
-  for (FaceSlot& s : face_walls_) {
+  for (std::size_t n = b; n < end; ++n) {
+    FaceSlot& s = face_walls_[n];
+    ElementPush& push = face_wall_push_[n];
+    push.applied = 0;
     const std::uint32_t i = s.i;
-    Wall& w = m_.walls[s.j];
+    const Wall& w = m_.walls[s.j];
     if (!e.active[i]) {
       if (s.touching) reset_slot(s);
       continue;
@@ -457,37 +647,54 @@ void Simulation::sweep_face_walls(double inv_dt) {
     s.nx = nx;
     s.ny = ny;
     if (f.links == 0) s.touching = 0;
-    const double fx = -f.p * nx + f.q * ny, fy = -f.p * ny - f.q * nx;
-    e.fx[i] += fx;
-    e.fy[i] += fy;
-    e.moment[i] += -r * f.q + f.p_moment;
-    w.force.x -= fx;
-    w.force.y -= fy;
+    push.fx = -f.p * nx + f.q * ny;
+    push.fy = -f.p * ny - f.q * nx;
+    push.mi = -r * f.q + f.p_moment;
+    push.applied = 1;
+    if constexpr (Scatter) {
+      e.fx[i] += push.fx;
+      e.fy[i] += push.fy;
+      e.moment[i] += push.mi;
+    }
   }
 }
 
-void Simulation::integrate() {
-  Elements& e = m_.elements;
-  const double dt = m_.numerics.dt;
-  // docs/references.md §1.4: a staggered start takes half a velocity step first, v_0 = v(Δt/2).
-  const double dt_v = (step_ == 0 && m_.numerics.velocity_start == VelocityStart::staggered) ? 0.5 * dt : dt;
-  const bool k19 = m_.numerics.integrator == Integrator::k19;
-  const std::size_t n = e.size();
+int Simulation::threads_used() const {
+  const std::size_t most = std::max<std::size_t>(1, m_.elements.size() / min_per_thread_);
+  return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads_), most));
+}
+
+bool Simulation::all_free() const {
   // The usual case, every element active and free: the same operations per element, in branch-free
   // loops that the compiler vectorises (the lanes round exactly as the scalar code; no FMA contraction).
-  std::uint8_t all_free = 1;
-  {
-    const std::uint8_t* __restrict act = e.active.data();
-    const Motion* __restrict mot = e.motion.data();
-    for (std::size_t i = 0; i < n; ++i) all_free &= (act[i] != 0) & (mot[i] == Motion::free);
-  }
-  if (all_free) {
+  const Elements& e = m_.elements;
+  std::uint8_t all = 1;
+  const std::uint8_t* __restrict act = e.active.data();
+  const Motion* __restrict mot = e.motion.data();
+  for (std::size_t i = 0; i < e.size(); ++i) all &= (act[i] != 0) & (mot[i] == Motion::free);
+  return all != 0;
+}
+
+double Simulation::velocity_dt() const {
+  // docs/references.md §1.4: a staggered start takes half a velocity step first, v_0 = v(Δt/2).
+  const double dt = m_.numerics.dt;
+  return (step_ == 0 && m_.numerics.velocity_start == VelocityStart::staggered) ? 0.5 * dt : dt;
+}
+
+void Simulation::integrate_range(std::size_t b, std::size_t end, double dt_v, bool free_only) {
+  Elements& e = m_.elements;
+  const double dt = m_.numerics.dt;
+  const bool k19 = m_.numerics.integrator == Integrator::k19;
+  if (free_only) {
     auto dof = k19 ? integrate_free<true> : integrate_free<false>;
-    dof(e.vx.data(), e.fx.data(), e.inv_mass.data(), e.dx.data(), e.x.data(), dt_v, dt, n);
-    dof(e.vy.data(), e.fy.data(), e.inv_mass.data(), e.dy.data(), e.y.data(), dt_v, dt, n);
-    dof(e.omega.data(), e.moment.data(), e.inv_inertia.data(), e.dphi.data(), e.phi.data(), dt_v, dt, n);
+    const std::size_t n = end - b;
+    dof(e.vx.data() + b, e.fx.data() + b, e.inv_mass.data() + b, e.dx.data() + b, e.x.data() + b, dt_v, dt, n);
+    dof(e.vy.data() + b, e.fy.data() + b, e.inv_mass.data() + b, e.dy.data() + b, e.y.data() + b, dt_v, dt, n);
+    dof(e.omega.data() + b, e.moment.data() + b, e.inv_inertia.data() + b, e.dphi.data() + b, e.phi.data() + b,
+        dt_v, dt, n);
+    return;
   }
-  for (std::size_t i = 0; i < n && !all_free; ++i) {
+  for (std::size_t i = b; i < end; ++i) {
     if (!e.active[i]) continue;
     switch (e.motion[i]) {
       case Motion::free:  // (K17): v_t = v_{t−Δt} + a_t Δt
@@ -519,6 +726,10 @@ void Simulation::integrate() {
     e.y[i] += e.dy[i];
     e.phi[i] += e.dphi[i];
   }
+}
+
+void Simulation::move_walls() {
+  const double dt = m_.numerics.dt;
   for (Wall& w : m_.walls) {
     w.increment = w.drive >= 0 ? m_.drives[static_cast<std::size_t>(w.drive)].at(time_ + 0.5 * dt) * dt : Vec2{};
     w.a = w.a + w.increment;
@@ -528,20 +739,40 @@ void Simulation::integrate() {
 
 void Simulation::step() {
   if (step_ > 0 && needs_rebuild()) rebuild();
-  Elements& e = m_.elements;
-  const std::size_t n = e.size();
-  const Vec2 g = m_.gravity;
-  weight(e.fx.data(), e.mass.data(), g.x, n);  // (K15): gravity
-  weight(e.fy.data(), e.mass.data(), g.y, n);
-  std::fill(e.moment.begin(), e.moment.end(), 0.0);
   for (Wall& w : m_.walls) w.force = {};
   const double inv_dt = 1.0 / m_.numerics.dt;
-  sweep_linear_pairs(inv_dt);
-  sweep_face_pairs(inv_dt);
-  sweep_linear_walls(inv_dt);
-  sweep_face_walls(inv_dt);
-  if (m_.base_plate.enabled) advance_base_plate();
-  integrate();
+  const std::size_t n = m_.elements.size();
+  // Base friction (M21) acts between the contact forces and the integration, on one thread; without
+  // it each thread integrates the elements it has just summed.
+  const bool plate = m_.base_plate.enabled;
+  const double dt_v = velocity_dt();
+  const bool free_only = all_free();
+  const int nt = threads_used();
+  if (nt == 1) {  // each slot adds its forces at once, in slot order (the order gather_forces keeps)
+    Elements& e = m_.elements;
+    weight(e.fx.data(), e.mass.data(), m_.gravity.x, n);  // (K15): gravity
+    weight(e.fy.data(), e.mass.data(), m_.gravity.y, n);
+    std::fill(e.moment.begin(), e.moment.end(), 0.0);
+    sweep_scatter(inv_dt);
+    if (!plate) integrate_range(0, n, dt_v, free_only);
+  } else {
+    on_threads(nt, [&](int t, int nt_) {
+      sweep_slots(inv_dt, t, nt_);  // every contact law (K5–K14, M3–M12) into its slot
+#pragma omp barrier
+      const auto [b, end] = share(n, t, nt_);
+      gather_forces(b, end, true);  // (K15): m g plus the contacts, per element in a fixed order
+      if (!plate) integrate_range(b, end, dt_v, free_only);  // (K17), (K18) or (K19)
+    });
+  }
+  sum_wall_forces();
+  if (plate) {
+    advance_base_plate();
+    on_threads(threads_used(), [&](int t, int nt) {
+      const auto [b, end] = share(n, t, nt);
+      integrate_range(b, end, dt_v, free_only);
+    });
+  }
+  move_walls();
   ++step_;
   time_ = static_cast<double>(step_) * m_.numerics.dt;
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dem/contact/contact_slots.hpp"
+#include "dem/core/contact_index.hpp"
 #include "dem/core/model.hpp"
 #include "dem/core/neighbour_search.hpp"
 #include "dem/core/stability.hpp"
@@ -78,16 +79,40 @@ class Simulation {
   /// The base plate's displacement and travel δ_B since the start (base_friction.hpp).
   const BasePlateTravel& plate_travel() const { return plate_travel_; }
 
+  /// Threads used inside a step (1: none). Results do not depend on it, bit for bit: every contact's
+  /// force is computed once into its slot, then each element sums its contacts in one fixed order
+  /// (contact_index.hpp), whatever thread computes what.
+  /// A thread takes at least `min_per_thread` elements (a step of fewer elements is faster on one
+  /// thread: the threads' start and barrier cost more than they save); tests lower it to 1.
+  void set_threads(int threads, std::size_t min_per_thread = 4096) {
+    threads_ = threads < 1 ? 1 : threads;
+    min_per_thread_ = min_per_thread < 1 ? 1 : min_per_thread;
+  }
+  int threads() const { return threads_; }
+  int threads_used() const;  // what a step uses: threads() limited by min_per_thread
+
  private:
   friend struct SimulationAccess;  // checkpoints (run/checkpoint.cpp) save and restore the whole state
   void rebuild();
   void apply_preloads();
   bool needs_rebuild() const;
-  void sweep_linear_pairs(double inv_dt);
-  void sweep_face_pairs(double inv_dt);
-  void sweep_linear_walls(double inv_dt);
-  void sweep_face_walls(double inv_dt);
-  void integrate();
+  // The contact laws of slots [b, e): each writes its forces into its slot (and face_push_), never into
+  // the elements, so slots can be computed in any order and on any thread.
+  // Scatter (one thread): each slot also adds its forces to its elements at once, in slot order; this
+  // is the order gather_forces reproduces per element, so both give the same forces bit for bit.
+  template <bool Scatter> void sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t e);
+  template <bool Scatter> void sweep_face_pairs(double inv_dt, std::size_t b, std::size_t e);
+  template <bool Scatter> void sweep_linear_walls(double inv_dt, std::size_t b, std::size_t e);
+  template <bool Scatter> void sweep_face_walls(double inv_dt, std::size_t b, std::size_t e);
+  void sweep_scatter(double inv_dt);  // one thread: every slot, scattering into the elements
+  void gather_forces(std::size_t b, std::size_t e, bool from_weight);  // elements [b, e) sum their contacts
+  void sum_wall_forces();
+  void index_contacts();  // after every change of the slot lists (rebuild, restore)
+  void sweep_slots(double inv_dt, int thread, int threads);  // this thread's share of every slot list
+  bool all_free() const;       // every element active and free
+  double velocity_dt() const;  // the step of (K17): Δt, or Δt/2 at a staggered start
+  void integrate_range(std::size_t b, std::size_t e, double dt_v, bool free_only);  // elements [b, e)
+  void move_walls();
   void advance_base_plate();  // base friction (M21) forces, plate travel
   void start_linear(LinearSlot& s, double overlap, double du_n, double du_s, double mass_i, double mass_j) const;
 
@@ -96,8 +121,12 @@ class Simulation {
   std::vector<CandidatePair> candidates_;
   std::vector<LinearSlot> linear_pairs_, linear_walls_, linear_scratch_;
   std::vector<FaceSlot> face_pairs_, face_walls_, face_scratch_;
-  std::vector<LinearSlot> linear_fresh_;  // rebuild scratch, kept to reuse its capacity
+  std::vector<LinearSlot> linear_fresh_;  // rebuild scratch (wall candidates), kept to reuse its capacity
   std::vector<FaceSlot> face_fresh_;
+  ContactIndex index_;                        // each element's slots in the fixed summation order
+  std::vector<ElementPush> face_push_, face_wall_push_;  // this step's face forces on the elements
+  int threads_ = 1;
+  std::size_t min_per_thread_ = 4096;
   std::vector<double> x_ref_, y_ref_;  // positions at the last rebuild
   std::vector<Vec2> wall_ref_;
   double skin_ = 0.0;

@@ -175,6 +175,7 @@ struct SimulationAccess {
     sim.skin_ = r.get<double>(), sim.time_ = r.get<double>(), sim.step_ = r.get<std::int64_t>();
     sim.rebuilds_ = r.get<std::int64_t>(), sim.preloading_ = r.get<bool>();
     if (r.pos != r.in.size()) throw OutputError(fmt::format("{}: corrupt checkpoint (trailing state bytes)", ck.case_path));
+    sim.index_contacts();  // derived from the slot lists, not saved
     if (!other_case) return;
     // Another case: each slot takes the new case's law of its material pair, of the same kind.
     const Model& m = sim.m_;

@@ -249,6 +249,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
                                   case_hash(c)));
   }
   Simulation sim(c.model);
+  sim.set_threads(opt.threads, opt.min_per_thread);
   const Model& m = sim.model();
   const std::int64_t total_steps = std::llround(std::ceil(m.numerics.duration / m.numerics.dt - 1e-9));
 

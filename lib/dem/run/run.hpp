@@ -24,6 +24,8 @@ struct RunOptions {
   std::filesystem::path restart;     // continue from this checkpoint (of the same case, unless:)
   bool restart_other_case = false;   //   the checkpoint is the start of this (other) case
   std::int64_t interrupt_at_step = 0;  // tests: behave as if SIGTERM arrived after this step (0: no)
+  int threads = 1;  // threads inside the run (Simulation::set_threads); results are the same for any number
+  std::size_t min_per_thread = 4096;  // elements per thread at least (tests: 1)
 };
 
 struct RunResult {

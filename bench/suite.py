@@ -1,0 +1,291 @@
+#!/usr/bin/env python3
+"""The speed suite (bench/README.md): dem2d side by side with LAMMPS (Debian `lammps`, binary `lmp`) in one
+interleaved run. Not part of ctest: speed is measured here, never in tests.
+
+    python3 bench/suite.py [--quick] [--big] [--reps N] [--out DIR] [--dem2d LABEL=PATH ...] [--lmp lmp]
+
+Cases (written into the output folder):
+  settle  bench/make_settle_case.py scaled: 10^3 disks x 10^4 steps, 10^4 x 10^4 (the bench case),
+          10^5 x 4000, and with --big 10^6 x 1000; dem2d on 1 and 2 threads, LAMMPS
+          pair_style gran/hooke/history on one process (bench/lammps_input.py);
+  pre     bench/make_pre_lattice_case.py: a bonded 100 x 100 PRE lattice, faces of N = 1 ... 5 segments,
+          2000 steps, dem2d on 1 thread (LAMMPS has no such element);
+  silo    a silo discharge of about 3x10^4 disks: runs cases/silo/discharge_30k.toml once it exists (hook).
+--quick: fewer steps (a smoke run of the whole suite in about a minute; the ratios are noisier).
+
+Every run repeats --reps times (default 3), all codes interleaved; the best run of each counts (other load
+only slows a run down); peak memory is the smallest maximum resident set size of the runs (/usr/bin/time).
+--dem2d LABEL=PATH (repeatable) compares several dem2d builds, e.g. before=/tmp/dem2d_main after=build/app/dem2d;
+a build without --threads is run without it (one thread).
+
+Writes DIR/results.json, DIR/table.md (markdown) and DIR/cost.svg (cost per element-step against size,
+log-log), and prints the table.
+"""
+import argparse
+import json
+import math
+import os
+import platform
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+SETTLE = [  # (label, rows, cols, steps, quick steps)
+    ("1e3", 20, 50, 10000, 2000),
+    ("1e4", 50, 200, 10000, 2000),
+    ("1e5", 200, 500, 4000, 500),
+]
+SETTLE_BIG = ("1e6", 500, 2000, 1000, 100)
+PRE = (100, 100, 2000, 400)  # rows, cols, steps, quick steps
+SILO_CASE = ROOT / "cases/silo/discharge_30k.toml"  # hook: run once the silo discharge case exists
+
+
+def cpu_model():
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def timed(cmd, cwd=None, env=None):
+    """Runs cmd under /usr/bin/time; returns the peak resident set size [bytes]."""
+    with tempfile.NamedTemporaryFile("r", suffix=".time") as tf:
+        full = ["/usr/bin/time", "-f", "%M", "-o", tf.name] + cmd
+        r = subprocess.run(full, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        if r.returncode != 0:
+            sys.exit(f"bench/suite.py: {' '.join(cmd)} failed:\n{r.stdout[-2000:]}")
+        return int(tf.read().strip().splitlines()[-1]) * 1024
+
+
+def has_threads(binary):
+    r = subprocess.run([binary, "run", "--help"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    return "--threads" in r.stdout
+
+
+def run_dem2d(binary, case, out, threads, threads_ok):
+    cmd = [binary, "run", str(case), "--out", str(out), "-q"]
+    if threads_ok:
+        cmd += ["--threads", str(threads)]
+    elif threads != 1:
+        return None
+    mem = timed(cmd)
+    s = json.load(open(out / "summary.json"))
+    return {"rate": s["element_steps_per_second"], "memory": mem, "elements": s["elements"], "steps": s["steps"],
+            "contacts": s["contacts"]}
+
+
+LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
+
+
+def run_lammps(lmp, folder, rep):
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    mem = timed([lmp, "-in", "in.settle", "-log", f"log.{rep}", "-screen", "none", "-nocite"], cwd=folder, env=env)
+    m = LOOP.search((folder / f"log.{rep}").read_text())
+    secs, procs, steps, atoms = float(m[1]), int(m[2]), int(m[3]), int(m[4])
+    assert procs == 1
+    return {"rate": steps * atoms / secs, "memory": mem, "elements": atoms, "steps": steps}
+
+
+def best(runs):
+    runs = [r for r in runs if r]
+    if not runs:
+        return None
+    b = dict(max(runs, key=lambda r: r["rate"]))
+    b["memory"] = min(r["memory"] for r in runs)
+    b["all_rates"] = [r["rate"] for r in runs]
+    return b
+
+
+def slope(points):
+    """Least-squares slope of log(time per step) against log(elements): 1 + that of the cost per element-step."""
+    if len(points) < 2:
+        return None
+    xs = [math.log(n) for n, _ in points]
+    ys = [math.log(n / rate) for n, rate in points]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+
+
+def svg_plot(series, path):
+    """series: {name: [(elements, ns per element-step)]} -> a log-log plot as SVG (no dependencies)."""
+    W, H, L, B, T, R = 640, 420, 70, 50, 20, 170
+    pts = [p for s in series.values() for p in s]
+    if not pts:
+        return
+    x0, x1 = math.floor(math.log10(min(p[0] for p in pts))), math.ceil(math.log10(max(p[0] for p in pts)))
+    y0 = math.floor(math.log10(min(p[1] for p in pts)) * 2) / 2
+    y1 = math.ceil(math.log10(max(p[1] for p in pts)) * 2) / 2
+    x1, y1 = max(x1, x0 + 1), max(y1, y0 + 0.5)
+    px = lambda n: L + (math.log10(n) - x0) / (x1 - x0) * (W - L - R)
+    py = lambda c: H - B - (math.log10(c) - y0) / (y1 - y0) * (H - B - T)
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" font-family="sans-serif" font-size="12">',
+           f'<rect width="{W}" height="{H}" fill="white"/>',
+           f'<line x1="{L}" y1="{H - B}" x2="{W - R}" y2="{H - B}" stroke="black"/>',
+           f'<line x1="{L}" y1="{T}" x2="{L}" y2="{H - B}" stroke="black"/>']
+    for e in range(x0, x1 + 1):
+        x = px(10 ** e)
+        out.append(f'<line x1="{x:.1f}" y1="{H - B}" x2="{x:.1f}" y2="{T}" stroke="#ddd"/>')
+        out.append(f'<text x="{x:.1f}" y="{H - B + 16}" text-anchor="middle">10^{e}</text>')
+    v = y0
+    while v <= y1 + 1e-9:
+        y = py(10 ** v)
+        out.append(f'<line x1="{L}" y1="{y:.1f}" x2="{W - R}" y2="{y:.1f}" stroke="#ddd"/>')
+        out.append(f'<text x="{L - 6}" y="{y + 4:.1f}" text-anchor="end">{10 ** v:.3g}</text>')
+        v += 0.5
+    out.append(f'<text x="{(L + W - R) / 2}" y="{H - 12}" text-anchor="middle">elements (disks)</text>')
+    out.append(f'<text x="16" y="{(T + H - B) / 2}" text-anchor="middle" transform="rotate(-90 16 {(T + H - B) / 2})">'
+               'wall-clock ns per element-step</text>')
+    colours = ["#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#ff7f0e", "#8c564b"]
+    for k, (name, s) in enumerate(series.items()):
+        c = colours[k % len(colours)]
+        s = sorted(s)
+        out.append('<polyline fill="none" stroke="%s" stroke-width="2" points="%s"/>'
+                   % (c, " ".join(f"{px(n):.1f},{py(v):.1f}" for n, v in s)))
+        for n, v in s:
+            out.append(f'<circle cx="{px(n):.1f}" cy="{py(v):.1f}" r="3.5" fill="{c}"/>')
+        out.append(f'<line x1="{W - R + 12}" y1="{T + 14 + 18 * k}" x2="{W - R + 32}" y2="{T + 14 + 18 * k}" stroke="{c}" stroke-width="2"/>')
+        out.append(f'<text x="{W - R + 38}" y="{T + 18 + 18 * k}">{name}</text>')
+    out.append("</svg>")
+    path.write_text("\n".join(out) + "\n")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--big", action="store_true", help="also 10^6 disks")
+    ap.add_argument("--reps", type=int, default=3)
+    ap.add_argument("--out", type=Path)
+    ap.add_argument("--dem2d", action="append", default=[], help="LABEL=PATH (default dem2d=build/app/dem2d)")
+    ap.add_argument("--lmp", default="lmp")
+    ap.add_argument("--no-pre", action="store_true")
+    a = ap.parse_args()
+    out = a.out or Path(tempfile.mkdtemp(prefix="dem2d-suite."))
+    out.mkdir(parents=True, exist_ok=True)
+    builds = [tuple(s.split("=", 1)) for s in a.dem2d] or [("dem2d", str(ROOT / "build/app/dem2d"))]
+    for _, b in builds:
+        if not os.access(b, os.X_OK):
+            sys.exit(f"bench/suite.py: {b} not found: cmake --build build -j2")
+    lmp = shutil.which(a.lmp)
+    if not lmp:
+        print(f"bench/suite.py: LAMMPS ({a.lmp}) not found (apt-get install -y lammps): dem2d only", file=sys.stderr)
+    threads_ok = {label: has_threads(b) for label, b in builds}
+
+    settle = SETTLE + ([SETTLE_BIG] if a.big else [])
+    cases = []  # (kind, label, case path, lammps folder)
+    for label, rows, cols, steps, quick in settle:
+        st = quick if a.quick else steps
+        case = out / f"settle_{label}.toml"
+        case.write_text(subprocess.run([sys.executable, str(ROOT / "bench/make_settle_case.py"), str(rows), str(cols),
+                                        str(st)], check=True, stdout=subprocess.PIPE, text=True).stdout)
+        lf = out / f"lammps_{label}"
+        if lmp:
+            subprocess.run([sys.executable, str(ROOT / "bench/lammps_input.py"), str(case), str(lf)], check=True,
+                           stdout=subprocess.DEVNULL)
+        cases.append(("settle", label, case, lf))
+    if not a.no_pre:
+        rows, cols, steps, quick = PRE
+        for n in range(1, 6):
+            case = out / f"pre_N{n}.toml"
+            case.write_text(subprocess.run([sys.executable, str(ROOT / "bench/make_pre_lattice_case.py"), str(rows),
+                                            str(cols), str(quick if a.quick else steps), str(n)],
+                                           check=True, stdout=subprocess.PIPE, text=True).stdout)
+            cases.append(("pre", f"N{n}", case, None))
+    if SILO_CASE.exists():
+        cases.append(("silo", "3e4", SILO_CASE, None))
+
+    runs = {}  # (kind, label, code) -> [run]
+    for rep in range(1, a.reps + 1):
+        for kind, label, case, lf in cases:
+            for blabel, b in builds:
+                for th in ((1, 2) if kind == "settle" else (1,)):
+                    r = run_dem2d(b, case, out / f"run_{kind}_{label}_{blabel}_t{th}_{rep}", th, threads_ok[blabel])
+                    runs.setdefault((kind, label, f"{blabel} {th}T"), []).append(r)
+            if kind == "settle" and lmp:
+                runs.setdefault((kind, label, "LAMMPS"), []).append(run_lammps(lmp, lf, rep))
+            print(f"rep {rep}: {kind} {label} done", file=sys.stderr, flush=True)
+
+    res = {"cpu": cpu_model(), "cores": os.cpu_count(), "load_average": os.getloadavg(), "reps": a.reps,
+           "quick": a.quick, "builds": dict(builds), "best": {}}
+    for (kind, label, code), rs in runs.items():
+        b = best(rs)
+        if b:
+            res["best"][f"{kind} {label} {code}"] = b
+    B = res["best"]
+    lines = [f"Machine: {res['cpu']}, {res['cores']} cores, load average {res['load_average'][0]:.1f} at the end; "
+             f"best of {a.reps} interleaved runs{' (--quick)' if a.quick else ''}.", ""]
+    codes = [f"{bl} {t}T" for bl, _ in builds for t in (1, 2)]
+    head = "| settle | " + " | ".join(f"{c} [Mdisk-steps/s]" for c in codes)
+    if lmp:
+        head += " | LAMMPS [Mdisk-steps/s] | " + " | ".join(f"{c} / LAMMPS" for c in codes)
+    head += " | " + " | ".join(f"{bl} 1T peak memory [B/disk]" for bl, _ in builds)
+    if lmp:
+        head += " | LAMMPS peak memory [B/disk] | " + " | ".join(f"{bl} / LAMMPS memory" for bl, _ in builds)
+    head += " | " + " | ".join(f"{bl} 2T / 1T" for bl, _ in builds) + " |"
+    lines += [head, "|" + "---|" * (head.count("|") - 1)]
+    plot = {}
+    for label, *_ in settle:
+        row = [f"{label} disks"]
+        get = lambda c: B.get(f"settle {label} {c}")
+        lam = get("LAMMPS")
+        row += [f"{get(c)['rate'] / 1e6:.1f}" if get(c) else "-" for c in codes]
+        if lmp:
+            row.append(f"{lam['rate'] / 1e6:.1f}")
+            row += [f"{get(c)['rate'] / lam['rate']:.2f}" if get(c) else "-" for c in codes]
+        for bl, _ in builds:
+            g = get(f"{bl} 1T")
+            row.append(f"{g['memory'] / g['elements']:.0f}" if g else "-")
+        if lmp:
+            row.append(f"{lam['memory'] / lam['elements']:.0f}")
+            for bl, _ in builds:
+                g = get(f"{bl} 1T")
+                row.append(f"{g['memory'] / lam['memory']:.2f}" if g else "-")
+        for bl, _ in builds:
+            g1, g2 = get(f"{bl} 1T"), get(f"{bl} 2T")
+            row.append(f"{g2['rate'] / g1['rate']:.2f}" if g1 and g2 else "-")
+        lines.append("| " + " | ".join(row) + " |")
+        for c in codes + (["LAMMPS"] if lmp else []):
+            if get(c):
+                plot.setdefault(c, []).append((get(c)["elements"], 1e9 / get(c)["rate"]))
+    lines.append("")
+    lines.append("Slope of log(time per step) against log(disks), least squares over the sizes (1 = flat cost "
+                 "per disk-step):")
+    res["slopes"] = {}
+    for c, pts in plot.items():
+        s = slope(pts)
+        res["slopes"][c] = s
+        lines.append(f"- {c}: {s:.3f}" if s is not None else f"- {c}: -")
+    pre = [k for k in B if k.startswith("pre ")]
+    if pre:
+        lines += ["", "| PRE lattice 100 x 100 | " + " | ".join(f"{bl} 1T [M element-steps/s]" for bl, _ in builds)
+                  + " | " + " | ".join(f"{bl} cost / cost at N = 1" for bl, _ in builds) + " |",
+                  "|---|" + "---|" * (2 * len(builds))]
+        for n in range(1, 6):
+            row = [f"N = {n}"]
+            for bl, _ in builds:
+                g = B.get(f"pre N{n} {bl} 1T")
+                row.append(f"{g['rate'] / 1e6:.2f}" if g else "-")
+            for bl, _ in builds:
+                g, g1 = B.get(f"pre N{n} {bl} 1T"), B.get(f"pre N1 {bl} 1T")
+                row.append(f"{g1['rate'] / g['rate']:.2f}" if g and g1 else "-")
+            lines.append("| " + " | ".join(row) + " |")
+    silo = [k for k in B if k.startswith("silo ")]
+    for k in silo:
+        lines.append(f"\nsilo discharge ({k}): {B[k]['rate'] / 1e6:.2f} M element-steps/s")
+    table = "\n".join(lines) + "\n"
+    (out / "table.md").write_text(table)
+    json.dump(res, open(out / "results.json", "w"), indent=2)
+    svg_plot(plot, out / "cost.svg")
+    print(table)
+    print(f"outputs: {out}/table.md, results.json, cost.svg")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,103 @@
+// Threads inside a run (docs/model.md §1 "Determinism", lib/dem/core/contact_index.hpp): the whole state
+// after any number of steps, and every output file, are the same bit for bit on 1, 2 and 3 threads.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "dem/cases/case_file.hpp"
+#include "dem/core/simulation.hpp"
+#include "dem/run/checkpoint.hpp"
+#include "dem/run/run.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+struct ThreadCase {
+  const char* path;
+  std::vector<std::string> sets;
+  int steps;
+};
+
+// Disks with walls (contacts form from about step 500), a bonded PRE lattice with disks and a driven
+// platen, PRE with base friction, a preloaded PRE, a silo of disks.
+const std::vector<ThreadCase> kCases = {
+    {"cases/bench/settle_10k.toml", {"numerics.duration=3.2e-3"}, 800},
+    {"cases/beam/mortar_2x8.toml", {"numerics.duration=2e-3"}, 4000},
+    {"cases/base_friction/mc_topple_75pre.toml", {"numerics.duration=0.5 s"}, 400},
+    {"cases/pre/small_rotation.toml", {}, 400},
+    {"cases/silo/static_11_12.toml", {"numerics.duration=0.05 s"}, 500},
+};
+
+}  // namespace
+
+TEST_CASE("The state after every step is the same bit for bit on 1, 2 and 3 threads", "[threads]") {
+  for (const ThreadCase& tc : kCases) {
+    CAPTURE(tc.path);
+    const dem::Case c = dem::read_case(test::source(tc.path), tc.sets);
+    std::vector<dem::Simulation> sims;
+    for (int t = 1; t <= 3; ++t) {
+      sims.emplace_back(c.model);
+      sims.back().set_threads(t, 1);  // every case on t threads, however small
+    }
+    REQUIRE(dem::simulation_state(sims[0]) == dem::simulation_state(sims[1]));
+    REQUIRE(dem::simulation_state(sims[0]) == dem::simulation_state(sims[2]));
+    std::size_t most_contacts = 0;
+    bool same = true;
+    for (int k = 1; k <= tc.steps && same; ++k) {
+      for (auto& s : sims) s.step();
+      most_contacts = std::max(most_contacts, sims[0].contact_count());
+      if (k % 50 == 0 || k == tc.steps) {
+        const std::string one = dem::simulation_state(sims[0]);
+        same = one == dem::simulation_state(sims[1]) && one == dem::simulation_state(sims[2]);
+        CAPTURE(k);
+        CHECK(same);
+      }
+    }
+    CHECK(most_contacts > 0);  // the comparison covered contact forces
+  }
+}
+
+TEST_CASE("Every output file of a run is the same bit for bit on 1 and 3 threads", "[threads]") {
+  for (const char* path : {"cases/beam/mortar_3pt.toml", "cases/silo/static_11_12.toml"}) {
+    CAPTURE(path);
+    const dem::Case c = dem::read_case(test::source(path), {"numerics.duration=2e-3"});
+    std::vector<std::filesystem::path> outs;
+    for (int t : {1, 3}) {
+      dem::RunOptions o;
+      o.out_dir = test::fresh_dir("dem2d_threads", std::string(std::filesystem::path(path).stem()) + "_t" + std::to_string(t));
+      o.threads = t;
+      o.min_per_thread = 1;
+      const dem::RunResult r = dem::run_case(c, o);
+      REQUIRE(r.status == "completed");
+      outs.push_back(o.out_dir);
+    }
+    CHECK(test::slurp(outs[0] / "series.csv") == test::slurp(outs[1] / "series.csv"));
+    int files = 0;
+    for (const auto& f : std::filesystem::recursive_directory_iterator(outs[0] / "vtk")) {
+      if (!f.is_regular_file()) continue;
+      ++files;
+      CAPTURE(f.path().string());
+      CHECK(test::slurp(f.path()) == test::slurp(outs[1] / std::filesystem::relative(f.path(), outs[0])));
+    }
+    CHECK(files > 0);
+  }
+}
+
+TEST_CASE("A thread count below one means one thread, and small runs use fewer threads", "[threads]") {
+  dem::Simulation sim(dem::read_case(test::source("cases/beam/mortar_2x8.toml")).model);
+  const std::size_t n = sim.model().elements.size();
+  REQUIRE(n >= 16);
+  sim.set_threads(0);
+  CHECK(sim.threads() == 1);
+  sim.set_threads(-3);
+  CHECK(sim.threads() == 1);
+  sim.set_threads(4);
+  CHECK(sim.threads() == 4);
+  CHECK(sim.threads_used() == 1);  // fewer than 4096 elements per thread
+  sim.set_threads(4, 1);
+  CHECK(sim.threads_used() == 4);
+  sim.set_threads(4, n / 2);
+  CHECK(sim.threads_used() == 2);
+}
