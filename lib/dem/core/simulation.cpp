@@ -200,6 +200,7 @@ void Simulation::rebuild() {
     const Vec2 c{e.x[i], e.y[i]};
     for (std::uint32_t k = 0; k < m_.walls.size(); ++k) {
       const Wall& w = m_.walls[k];
+      if (w.open) continue;
       const double cut = e.radius[i] + skin_;
       const Vec2 d = closest_point(w, c) - c;
       if (dot(d, d) >= cut * cut) continue;
