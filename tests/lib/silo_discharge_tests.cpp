@@ -254,3 +254,32 @@ TEST_CASE("Bad discharge keys give file:line: key: what was expected", "[silo][d
   fails("[discharge]\nslit = \"gate\"\noutlet_depth = \"1 cm\"\nkeystone_after = \"2 cm\"\n", "discharge.keystone_after", "");
   fails("[discharge]\nslit = \"gate\"\noutlet_depth = \"1 cm\"\nkeystone_afterr = \"2 s\"\n", "keystone_afterr", "");
 }
+
+TEST_CASE("open_at opens the gate during the run, and a restart across the opening continues bit for bit",
+          "[silo][discharge][restart]") {
+  const std::string later = kOpen + "open_at = \"0.1 s\"\n";
+  const dem::Case c = dem::read_case(test::write_temp("discharge_open_at.toml", tiny_silo(0.01, kTwoDisks, later, 0.4)));
+  CHECK_FALSE(c.model.walls[1].open);
+  const auto a = test::fresh_dir("dem2d_unit_discharge", "open_at");
+  REQUIRE(run(c, a).status == "completed");
+  const auto rows = table(a / "series.csv");  // every 1e-3 s: t, e0.y, e1.y, active.count, active.mass
+  CHECK(rows.at(100)[0] == Approx(0.1).margin(1e-9));
+  CHECK(rows.at(100)[1] == Approx(0.005).margin(1e-4));   // on the gate until 0.1 s
+  CHECK(rows.at(110)[1] < rows.at(100)[1] - 1e-4);        // falling after it
+  CHECK(summary(a)["discharge"]["discharged"] == 1);
+  for (const std::int64_t at : {5000, 10000, 10001, 12000}) {  // before, at and after the opening
+    dem::RunOptions oi;
+    oi.interrupt_at_step = at;
+    const auto b = test::fresh_dir("dem2d_unit_discharge", "open_at_interrupted");
+    REQUIRE(run(c, b, oi).status == "interrupted");
+    dem::RunOptions orr;
+    orr.restart = b / "checkpoint.bin";
+    const auto r = test::fresh_dir("dem2d_unit_discharge", "open_at_restarted");
+    REQUIRE(run(c, r, orr).status == "completed");
+    const auto rest = table(r / "series.csv");  // its first row is the restart's own (off the output grid)
+    REQUIRE(rest.size() >= 2);
+    REQUIRE(rest.size() - 1 <= rows.size());
+    for (std::size_t i = 1; i < rest.size(); ++i) CHECK(rest[i] == rows[rows.size() - rest.size() + i]);
+    CHECK(summary(r)["discharge"] == summary(a)["discharge"]);
+  }
+}

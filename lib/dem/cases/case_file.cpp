@@ -757,7 +757,9 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     Wall& w = m.walls[static_cast<std::size_t>(d.slit)];
     if (w.kind != WallKind::segment) r.fail("slit", fmt::format("wall \"{}\" is a point wall; expected a segment wall across the slit", slit));
     if (w.drive >= 0) r.fail("slit", fmt::format("wall \"{}\" is driven; expected a fixed wall", slit));
-    w.open = true;
+    d.open_at = r.quantity("open_at", dims::time, 0.0);
+    rd.non_negative(r, "open_at", d.open_at);
+    w.open = d.open_at == 0.0;  // else the run opens it at open_at
     d.outlet_depth = r.quantity("outlet_depth", dims::length);
     rd.non_negative(r, "outlet_depth", d.outlet_depth);
     d.keystone_after = r.quantity("keystone_after", dims::time, 0.0);

@@ -16,6 +16,8 @@ struct Discharge {
   std::int32_t slit = -1;       // the wall that is the slit (opened: no contacts)
   double outlet_depth = 0.0;    // outlet line: this far below the slit's mid-point along g [m]
   double keystone_after = 0.0;  // arch breaker: no disk out for this long → remove the keystone [s]; 0: never
+  double open_at = 0.0;         // the slit opens at this time [s] (0: open from the start); removals and the
+                                // arch breaker's clock start then
 };
 
 /// How far below the outlet line, along g, the point (x, y) lies [m] (> 0: below it).

@@ -307,6 +307,12 @@ void Simulation::sweep_linear_pairs(double inv_dt) {
   }
 }
 
+void Simulation::open_wall(std::uint32_t w) {
+  m_.walls[w].open = true;
+  std::erase_if(linear_walls_, [w](const LinearSlot& s) { return s.j == w; });
+  std::erase_if(face_walls_, [w](const FaceSlot& s) { return s.j == w; });
+}
+
 void Simulation::sweep_linear_walls(double inv_dt) {
   Elements& e = m_.elements;
   for (LinearSlot& s : linear_walls_) {

@@ -172,17 +172,18 @@ struct LoopState {
   double peak_so_far = 0.0;  // [stop] after_peak: the largest |q| so far
   // [discharge]: the time of the last removal (a disk out, or a keystone), and every keystone removed
   double last_release = 0.0;
+  bool slit_opened = false;  // open_at reached (the case's wall is closed until then)
   struct Keystone {
     double t = 0.0, element = 0.0, x = 0.0, y = 0.0;
   };
   std::vector<Keystone> keystones;
 };
-constexpr std::size_t kLoopNumbers = 10;  // then the probes' numbers, then 4 per keystone
+constexpr std::size_t kLoopNumbers = 11;  // then the probes' numbers, then 4 per keystone
 constexpr std::size_t kProbeNumbers = 26;
 std::vector<double> loop_state(const LoopState& l, const std::vector<ProbeState>& probes) {
   std::vector<double> v{l.energy_limit,       l.potential0, l.scale.total, l.scale.gravity_work, l.scale.drive_work,
                         l.scale.drop, static_cast<double>(l.quiet_steps), l.peak_so_far, l.last_release,
-                        static_cast<double>(l.keystones.size())};
+                        static_cast<double>(l.keystones.size()), l.slit_opened ? 1.0 : 0.0};
   for (const ProbeState& p : probes) {
     v.insert(v.end(), {p.prev_t, p.prev_v, p.value ? 1.0 : 0.0, p.value.value_or(0.0), p.extreme,
                        p.have_extreme ? 1.0 : 0.0, p.vn_prev, p.extreme_t, p.st, p.sq, p.stt, p.stq, p.sn,
@@ -202,6 +203,7 @@ void restore_loop_state(const std::vector<double>& v, LoopState& l, std::vector<
   l.quiet_steps = static_cast<std::int64_t>(v[6]);
   l.peak_so_far = v[7];
   l.last_release = v[8];
+  l.slit_opened = v[10] != 0.0;
   l.keystones.clear();
   for (std::size_t k = 0; k < n_keystones; ++k) {
     const double* q = v.data() + kLoopNumbers + kProbeNumbers * probes.size() + 4 * k;
@@ -322,6 +324,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
     loop.last_release = sim.time();  // a discharge from a saved state: its clock starts at the state's time
     if (opt.restart_other_case) loop.potential0 = sim.energies().potential;
     else restore_loop_state(restart->loop, loop, probes);
+    if (loop.slit_opened) sim.open_wall(static_cast<std::uint32_t>(m.discharge.slit));  // opened before the checkpoint
   }
   double& energy_limit = loop.energy_limit;
   const double& potential0 = loop.potential0;
@@ -420,7 +423,15 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   auto last_print = t0;
   const std::int64_t check_every = 64;
+  const auto slit = static_cast<std::uint32_t>(std::max(m.discharge.slit, 0));
   for (std::int64_t k = first_step; k < total_steps; ++k) {
+    // [discharge] open_at: the gate opens at the first step that starts at or after open_at (derived
+    // from the clock alone, so a restart opens it at the same point of the loop)
+    if (m.discharge.enabled && !m.walls[slit].open && sim.time() >= m.discharge.open_at - 1e-9 * m.numerics.dt) {
+      sim.open_wall(slit);
+      loop.slit_opened = true;
+      loop.last_release = sim.time();
+    }
     sim.step();
     if (k == first_step && energy_limit <= 0.0) {
       const Energies e1 = sim.energies();
@@ -452,7 +463,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
     }
     // discharge (core/discharge.hpp): disks below the outlet line leave the run; a stalled arch loses
     // its keystone once no disk has left for keystone_after
-    if (m.discharge.enabled) {
+    if (m.discharge.enabled && m.walls[slit].open) {
       Model& mm = sim.model();
       if (remove_discharged(mm) > 0) {
         loop.last_release = sim.time();
