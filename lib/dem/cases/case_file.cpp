@@ -744,6 +744,29 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     if (o.picture_max_force) rd.positive(r, "picture_max_force", *o.picture_max_force);
     r.finish();
   }
+  // [discharge]: a silo's discharge stage (core/discharge.hpp): the slit wall is opened, disks below the
+  // outlet line are removed, a stalled arch loses its keystone
+  if (const toml::table* t = top.table("discharge")) {
+    TableReader r(*t, "discharge", file);
+    Discharge& d = m.discharge;
+    d.enabled = true;
+    const std::string slit = r.string("slit");
+    auto it = rd.wall_index.find(slit);
+    if (it == rd.wall_index.end()) r.fail("slit", fmt::format("unknown wall \"{}\" (expected the name of the wall that closes the slit)", slit));
+    d.slit = it->second;
+    Wall& w = m.walls[static_cast<std::size_t>(d.slit)];
+    if (w.kind != WallKind::segment) r.fail("slit", fmt::format("wall \"{}\" is a point wall; expected a segment wall across the slit", slit));
+    if (w.drive >= 0) r.fail("slit", fmt::format("wall \"{}\" is driven; expected a fixed wall", slit));
+    d.open_at = r.quantity("open_at", dims::time, 0.0);
+    rd.non_negative(r, "open_at", d.open_at);
+    w.open = d.open_at == 0.0;  // else the run opens it at open_at
+    d.outlet_depth = r.quantity("outlet_depth", dims::length);
+    rd.non_negative(r, "outlet_depth", d.outlet_depth);
+    d.keystone_after = r.quantity("keystone_after", dims::time, 0.0);
+    rd.non_negative(r, "keystone_after", d.keystone_after);
+    if (!(norm(m.gravity) > 0.0)) r.fail_here("a discharge needs gravity (the outlet line lies below the slit along g)");
+    r.finish();
+  }
   // [stop]
   if (const toml::table* t = top.table("stop")) {
     TableReader r(*t, "stop", file);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dem/core/base_friction.hpp"
+#include "dem/core/discharge.hpp"
 #include "dem/core/elements.hpp"
 #include "dem/contact/face_contact.hpp"
 #include "dem/contact/linear_contact.hpp"
@@ -83,6 +84,7 @@ struct Model {
   BasePlate base_plate;     // base friction (M21), base_friction.hpp; disabled by default
   double thickness = 1.0;   // element depth l [m] (docs/model.md: "per unit thickness" is l = 1)
   Numerics numerics;
+  Discharge discharge;      // a silo's discharge stage (discharge.hpp); disabled by default
 
   std::int32_t law_index(std::int32_t mat_a, std::int32_t mat_b) const {
     return law_of_pair[static_cast<std::size_t>(mat_a) * materials.size() + mat_b];

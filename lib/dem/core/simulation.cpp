@@ -230,6 +230,7 @@ void Simulation::rebuild() {
     const Vec2 c{e.x[i], e.y[i]};
     for (std::uint32_t k = 0; k < m_.walls.size(); ++k) {
       const Wall& w = m_.walls[k];
+      if (w.open) continue;
       const double cut = e.radius[i] + skin_;
       const Vec2 d = closest_point(w, c) - c;
       if (dot(d, d) >= cut * cut) continue;
@@ -479,6 +480,13 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
       moment[j] -= radius[j] * f.fs;
     }
   }
+}
+
+void Simulation::open_wall(std::uint32_t w) {
+  m_.walls[w].open = true;
+  std::erase_if(linear_walls_, [w](const LinearSlot& s) { return s.j == w; });
+  std::erase_if(face_walls_, [w](const FaceSlot& s) { return s.j == w; });
+  index_contacts();  // the slot lists changed
 }
 
 template <bool Scatter>

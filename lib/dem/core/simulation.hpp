@@ -71,6 +71,9 @@ class Simulation {
   };
   BandForce wall_band_force(std::uint32_t w, double s0, double s1) const;
 
+  /// Opens wall w (Wall::open): its contacts are dropped, it forms no new ones (a silo's gate, discharge.hpp).
+  void open_wall(std::uint32_t w);
+
   /// The time-step limit over every contact the case can form, with what sets it and what it assumes
   /// (stability.hpp); the limit is infinity if no contact is possible.
   StabilityBound stability_bound() const;

@@ -450,7 +450,7 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
     int n_seg = 0, n_pt = 0;
     for (const Wall& w : m.walls) {
       const std::int32_t law = m.law_of_pair[a * nm + static_cast<std::size_t>(w.material)];
-      if (law < 0) continue;
+      if (law < 0 || w.open) continue;
       walls.push_back(&w);
       (w.kind == WallKind::segment ? seg : pt).merge(contact_kind(m, law, s, nullptr));
       ++(w.kind == WallKind::segment ? n_seg : n_pt);

@@ -14,6 +14,8 @@ enum class WallKind : std::uint8_t { segment, point };
 struct Wall {
   std::string name;
   WallKind kind = WallKind::segment;
+  bool open = false;  // an opened gate (a silo's slit in discharge, core/discharge.hpp): no contacts.
+                      // Case data, fixed for the run: a checkpoint does not save it
   Vec2 a, b;                  // end points [m] (a point wall uses a only)
   std::int32_t material = 0;  // index into the materials table
   std::int32_t drive = -1;    // velocity history index, -1 for a fixed wall

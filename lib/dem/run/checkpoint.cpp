@@ -179,6 +179,12 @@ struct SimulationAccess {
     if (!other_case) return;
     // Another case: each slot takes the new case's law of its material pair, of the same kind.
     const Model& m = sim.m_;
+    // A wall the new case opens (a silo's slit in discharge) has no contacts: they are dropped.
+    auto drop_open = [&](auto& slots) {
+      std::erase_if(slots, [&](const auto& s) { return m.walls[s.j].open; });
+    };
+    drop_open(sim.linear_walls_);
+    drop_open(sim.face_walls_);
     auto relaw = [&](auto& slots, bool wall, LawKind kind) {
       for (auto& s : slots) {
         const std::int32_t mj = wall ? m.walls[s.j].material : e.material[s.j];

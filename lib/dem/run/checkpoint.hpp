@@ -22,7 +22,7 @@
 
 namespace dem {
 
-inline constexpr std::uint32_t kCheckpointVersion = 1;
+inline constexpr std::uint32_t kCheckpointVersion = 2;  // 2: the run loop's discharge state
 
 struct Checkpoint {
   std::string case_hash, case_path;

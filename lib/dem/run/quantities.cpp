@@ -144,6 +144,26 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
     };
   }
   if (name == "unbalanced_force_ratio") return unbalanced_force_ratio;
+  // a silo's discharge (core/discharge.hpp): the disks removed below the outlet line, their mass; the
+  // active (remaining) disks and their mass [kg per thickness l]
+  if (name == "discharged.count" || name == "discharged.mass") {
+    if (!m.discharge.enabled) throw bad("needs a [discharge] table");
+    const bool count = name.back() == 't';
+    return [count](const Simulation& s) {
+      const Discharged d = discharged(s.model());
+      return count ? static_cast<double>(d.count) : d.mass;
+    };
+  }
+  if (name == "active.count" || name == "active.mass") {
+    const bool count = name.back() == 't';
+    return [count](const Simulation& s) {
+      const Elements& e = s.model().elements;
+      double sum = 0.0;
+      for (std::size_t i = 0; i < e.size(); ++i)
+        if (e.active[i]) sum += count ? 1.0 : e.mass[i];
+      return sum;
+    };
+  }
   long i = -1;
   try {
     i = p.empty() ? -1 : element_ref(p[0], m);
@@ -231,6 +251,8 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
 std::string quantity_unit(const std::string& name) {
   if (name == "t") return "s";
   if (name == "step" || name == "contacts" || name == "unbalanced_force_ratio") return "1";
+  if (name == "discharged.count" || name == "active.count") return "1";
+  if (name == "discharged.mass" || name == "active.mass") return "kg";
   if (name.rfind("energy.", 0) == 0) return "J";
   if (name == "mean_increment" || name == "plate_travel" || name == "plate_dx" || name == "plate_dy") return "m";
   const auto p = split(name, '.');

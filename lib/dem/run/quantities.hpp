@@ -11,6 +11,8 @@
 //   <wall>.fx  <wall>.fy               force of the elements on the wall [N]
 //   <wall>.x   <wall>.y                wall position (first end point) [m]
 //   walls.fx  walls.fy                 force of the elements on all walls together [N]
+//   discharged.count  discharged.mass  disks removed below a [discharge] outlet line, their mass [kg]
+//   active.count  active.mass          elements still in the run, their mass [kg]
 //   <wall>.fn(s0,s1)  <wall>.fs(s0,s1) force of the contacts whose contact point lies in the band
 //                                      s0 <= s < s1 along the wall (s [m] from its `from` end towards
 //                                      `to`): normal part (compression positive) and tangential part

@@ -163,6 +163,10 @@ nlohmann::json resolved_case_si(const Case& c) {
     walls.push_back(wj);
   }
   j["walls"] = walls;
+  if (m.discharge.enabled)
+    j["discharge"] = {{"slit", m.walls[static_cast<std::size_t>(m.discharge.slit)].name},
+                      {"outlet_depth", m.discharge.outlet_depth}, {"keystone_after", m.discharge.keystone_after},
+                      {"open_at", m.discharge.open_at}};
   if (m.base_plate.enabled)
     j["base_plate"] = {{"velocity", vec(m.base_plate.velocity)}, {"driven", m.base_plate.drive >= 0},
                        {"normal_gravity", m.base_plate.normal_gravity},

@@ -170,12 +170,20 @@ struct LoopState {
   EnergyScale scale;
   std::int64_t quiet_steps = 0;
   double peak_so_far = 0.0;  // [stop] after_peak: the largest |q| so far
+  // [discharge]: the time of the last removal (a disk out, or a keystone), and every keystone removed
+  double last_release = 0.0;
+  bool slit_opened = false;  // open_at reached (the case's wall is closed until then)
+  struct Keystone {
+    double t = 0.0, element = 0.0, x = 0.0, y = 0.0;
+  };
+  std::vector<Keystone> keystones;
 };
-constexpr std::size_t kLoopNumbers = 8;
+constexpr std::size_t kLoopNumbers = 11;  // then the probes' numbers, then 4 per keystone
 constexpr std::size_t kProbeNumbers = 26;
 std::vector<double> loop_state(const LoopState& l, const std::vector<ProbeState>& probes) {
   std::vector<double> v{l.energy_limit,       l.potential0, l.scale.total, l.scale.gravity_work, l.scale.drive_work,
-                        l.scale.drop, static_cast<double>(l.quiet_steps), l.peak_so_far};
+                        l.scale.drop, static_cast<double>(l.quiet_steps), l.peak_so_far, l.last_release,
+                        static_cast<double>(l.keystones.size()), l.slit_opened ? 1.0 : 0.0};
   for (const ProbeState& p : probes) {
     v.insert(v.end(), {p.prev_t, p.prev_v, p.value ? 1.0 : 0.0, p.value.value_or(0.0), p.extreme,
                        p.have_extreme ? 1.0 : 0.0, p.vn_prev, p.extreme_t, p.st, p.sq, p.stt, p.stq, p.sn,
@@ -183,15 +191,24 @@ std::vector<double> loop_state(const LoopState& l, const std::vector<ProbeState>
                        p.vn_in, p.vn_out, p.touched ? 1.0 : 0.0, p.separated ? 1.0 : 0.0,
                        static_cast<double>(p.force_steps), p.in_contact ? 1.0 : 0.0, p.x0});
   }
+  for (const LoopState::Keystone& k : l.keystones) v.insert(v.end(), {k.t, k.element, k.x, k.y});
   return v;
 }
 void restore_loop_state(const std::vector<double>& v, LoopState& l, std::vector<ProbeState>& probes) {
-  if (v.size() != kLoopNumbers + kProbeNumbers * probes.size())
+  const std::size_t n_keystones = v.size() >= kLoopNumbers ? static_cast<std::size_t>(v[9]) : 0;
+  if (v.size() != kLoopNumbers + kProbeNumbers * probes.size() + 4 * n_keystones)
     throw CaseError("restart: the checkpoint's run state does not match the case's probes");
   l.energy_limit = v[0], l.potential0 = v[1];
   l.scale.total = v[2], l.scale.gravity_work = v[3], l.scale.drive_work = v[4], l.scale.drop = v[5];
   l.quiet_steps = static_cast<std::int64_t>(v[6]);
   l.peak_so_far = v[7];
+  l.last_release = v[8];
+  l.slit_opened = v[10] != 0.0;
+  l.keystones.clear();
+  for (std::size_t k = 0; k < n_keystones; ++k) {
+    const double* q = v.data() + kLoopNumbers + kProbeNumbers * probes.size() + 4 * k;
+    l.keystones.push_back({q[0], q[1], q[2], q[3]});
+  }
   const double* x = v.data() + kLoopNumbers;
   for (ProbeState& p : probes) {
     p.prev_t = x[0], p.prev_v = x[1];
@@ -302,10 +319,13 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   const double gravity_norm = norm(m.gravity);
   // The run's state from a checkpoint: the Simulation's, and the loop's (probes, energy bound, settle
   // window).
+  loop.last_release = sim.time();
   if (restart) {
     restore_simulation(sim, *restart, opt.restart_other_case);
+    loop.last_release = sim.time();  // a discharge from a saved state: its clock starts at the state's time
     if (opt.restart_other_case) loop.potential0 = sim.energies().potential;
     else restore_loop_state(restart->loop, loop, probes);
+    if (loop.slit_opened) sim.open_wall(static_cast<std::uint32_t>(m.discharge.slit));  // opened before the checkpoint
   }
   double& energy_limit = loop.energy_limit;
   const double& potential0 = loop.potential0;
@@ -404,7 +424,15 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   auto last_print = t0;
   const std::int64_t check_every = 64;
+  const auto slit = static_cast<std::uint32_t>(std::max(m.discharge.slit, 0));
   for (std::int64_t k = first_step; k < total_steps; ++k) {
+    // [discharge] open_at: the gate opens at the first step that starts at or after open_at (derived
+    // from the clock alone, so a restart opens it at the same point of the loop)
+    if (m.discharge.enabled && !m.walls[slit].open && sim.time() >= m.discharge.open_at - 1e-9 * m.numerics.dt) {
+      sim.open_wall(slit);
+      loop.slit_opened = true;
+      loop.last_release = sim.time();
+    }
     sim.step();
     if (k == first_step && energy_limit <= 0.0) {
       const Energies e1 = sim.energies();
@@ -432,6 +460,21 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
             sim.time(), sim.steps(), worst, std::hypot(e.dx[worst], e.dy[worst]), std::sqrt(worst2),
             m.numerics.max_step_fraction, limit, m.numerics.dt);
         break;
+      }
+    }
+    // discharge (core/discharge.hpp): disks below the outlet line leave the run; a stalled arch loses
+    // its keystone once no disk has left for keystone_after
+    if (m.discharge.enabled && m.walls[slit].open) {
+      Model& mm = sim.model();
+      if (remove_discharged(mm) > 0) {
+        loop.last_release = sim.time();
+      } else if (m.discharge.keystone_after > 0.0 &&
+                 sim.time() - loop.last_release >= m.discharge.keystone_after - 1e-9 * m.numerics.dt) {
+        if (const auto k = keystone(mm)) {
+          mm.elements.active[*k] = 0;
+          loop.last_release = sim.time();
+          loop.keystones.push_back({sim.time(), static_cast<double>(*k), mm.elements.x[*k], mm.elements.y[*k]});
+        }
       }
     }
     // probes
@@ -659,6 +702,22 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       {"resolved_case", resolved_case_si(c)},
   };
   res.summary["case_hash"] = case_hash(c);
+  if (m.discharge.enabled) {
+    const Discharged d = discharged(m);
+    nlohmann::json ks = nlohmann::json::array();
+    double keystone_mass = 0.0;
+    for (const LoopState::Keystone& k : loop.keystones) {
+      ks.push_back({{"time", k.t}, {"element", static_cast<std::int64_t>(k.element)}, {"x", k.x}, {"y", k.y}});
+      keystone_mass += m.elements.mass[static_cast<std::size_t>(k.element)];
+    }
+    double remaining_mass = 0.0;
+    for (std::size_t i = 0; i < m.elements.size(); ++i)
+      if (m.elements.active[i]) remaining_mass += m.elements.mass[i];
+    res.summary["discharge"] = {{"discharged", d.count}, {"discharged_mass", d.mass}, {"remaining", n_active},
+                                {"remaining_mass", remaining_mass}, {"keystones_removed", loop.keystones.size()},
+                                {"keystone_mass", keystone_mass}, {"keystones", ks},
+                                {"units", {{"mass", "kg (per thickness l of the model)"}, {"time", "s"}, {"x", "m"}}}};
+  }
   if (!pictures.empty()) {
     nlohmann::json list = nlohmann::json::array();
     for (const auto& [t, name] : pictures) list.push_back({{"time", t}, {"file", name}});

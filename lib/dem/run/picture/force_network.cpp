@@ -104,6 +104,7 @@ ForcePicture draw_force_network(const Simulation& sim, const PictureOptions& o) 
   // Walls.
   const double wall_width = std::clamp(0.25 * (std::isfinite(r_min) ? r_min * f.scale : 8.0), 2.0, 8.0);
   for (const Wall& w : sim.model().walls) {
+    if (w.open) continue;  // an opened gate (a silo's slit in discharge) is not drawn
     const Vec2 a = f.to_px(w.a);
     if (w.kind == WallKind::point) cv.disk(a.x, a.y, 0.8 * wall_width + 1.0, kWall);
     else {
