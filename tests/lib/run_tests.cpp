@@ -192,6 +192,27 @@ TEST_CASE("Snapshots show the crack: each contact line carries its linked segmen
         std::count_if(first.begin(), first.end(), [](int n) { return n >= 1 && n < 5; }));  // broken faces
 }
 
+TEST_CASE("Every series and probe quantity of every shipped case has a known unit", "[run][units]") {
+  int quantities = 0;
+  for (const auto& f : fs::recursive_directory_iterator(source("cases"))) {
+    if (f.path().extension() != ".toml") continue;
+    CAPTURE(f.path().string());
+    const dem::Case c = dem::read_case(f.path());
+    for (const auto& q : c.output.series) {
+      INFO(q);
+      CHECK(dem::quantity_unit(q) != "unknown");
+      ++quantities;
+    }
+    for (const auto& p : c.probes)
+      if (!p.quantity.empty()) {
+        INFO(p.quantity);
+        CHECK(dem::quantity_unit(p.quantity) != "unknown");
+        ++quantities;
+      }
+  }
+  CHECK(quantities > 100);
+}
+
 TEST_CASE("Every quantity name has its SI unit for the series header and the probes", "[run][units]") {
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"t", "s"}, {"step", "1"}, {"contacts", "1"}, {"energy.kinetic", "J"}, {"energy.total", "J"},
@@ -199,7 +220,9 @@ TEST_CASE("Every quantity name has its SI unit for the series header and the pro
       {"e3.vx", "m/s"}, {"e3.vy", "m/s"}, {"e3.omega", "rad/s"}, {"e3.fx", "N"}, {"e3.fy", "N"}, {"e3.moment", "N*m"},
       {"e3.px(1,-1)", "m"}, {"e0.py(0.5,-1)", "m"}, {"e0.gap.floor", "m"}, {"e0.gap.e1", "m"}, {"e0.fn.floor", "N"},
       {"e0.fs.e2", "N"}, {"e0.links.floor", "1"}, {"floor.fx", "N"}, {"floor.fy", "N"}, {"floor.x", "m"},
-      {"floor.y", "m"}, {"plate_travel", "m"}, {"plate_dx", "m"}, {"plate_dy", "m"}, {"e0.corner_slide(38.5)", "m"}};
+      {"floor.y", "m"}, {"plate_travel", "m"}, {"plate_dx", "m"}, {"plate_dy", "m"}, {"e0.corner_slide(38.5)", "m"},
+      {"left.fn(0,0.0598)", "N"}, {"left.fs(0.1209,0.1814)", "N"}, {"walls.fx", "N"}, {"walls.fy", "N"},
+      {"discharged.count", "1"}, {"discharged.mass", "kg"}, {"active.count", "1"}, {"active.mass", "kg"}};
   for (const auto& [name, unit] : expected) {
     INFO(name);
     CHECK(dem::quantity_unit(name) == unit);

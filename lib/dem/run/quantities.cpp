@@ -257,6 +257,9 @@ std::string quantity_unit(const std::string& name) {
   if (name == "mean_increment" || name == "plate_travel" || name == "plate_dx" || name == "plate_dy") return "m";
   const auto p = split(name, '.');
   if (p.size() >= 2 && p[1].rfind("corner_slide(", 0) == 0) return "m";
+  if (const auto dot = name.find('.'); dot != std::string::npos &&
+      (name.compare(dot + 1, 3, "fn(") == 0 || name.compare(dot + 1, 3, "fs(") == 0))
+    return "N";  // <wall>.fn(s0,s1), <wall>.fs(s0,s1): a band's force (the bounds may hold dots)
   if (p.size() == 3) {  // e<i>.gap|fn|fs|links.<other>
     if (p[1] == "gap") return "m";
     if (p[1] == "fn" || p[1] == "fs") return "N";
