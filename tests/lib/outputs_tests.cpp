@@ -13,6 +13,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <sys/resource.h>
+#include <thread>
+#include <atomic>
+#include <vector>
 
 #include "dem/run/checkpoint.hpp"
 #include "dem/run/interrupt.hpp"
@@ -215,7 +218,9 @@ TEST_CASE("An output folder never mixes two runs", "[outputs]") {
   std::ofstream(out / "summary.json") << "{\"status\": \"completed\", \"steps\": 12345}";
   std::ofstream(out / "series.csv.partial") << "1,2,";
   std::ofstream(out / "checkpoint.bin") << "old";
+  std::ofstream(out / "summary.json.4242-7.tmp") << "{";  // a temporary left by a killed write_file_atomic
   REQUIRE(run(c, out).status == "completed");
+  CHECK_FALSE(fs::exists(out / "summary.json.4242-7.tmp"));
   CHECK_FALSE(fs::exists(out / "vtk" / "snapshot_999999999.vtp"));
   CHECK_FALSE(fs::exists(out / "series.csv.partial"));
   CHECK_FALSE(fs::exists(out / "checkpoint.bin"));
@@ -226,6 +231,32 @@ TEST_CASE("An output folder never mixes two runs", "[outputs]") {
   CHECK_THROWS_WITH(run(c, out), Contains("thesis.tex"));
   CHECK(slurp(out / "thesis.tex") == "precious");
   CHECK(fs::exists(out / "summary.json"));
+}
+
+TEST_CASE("Several threads finishing the same file at once all succeed and leave one whole file", "[outputs]") {
+  // A study's duplicate runs (e.g. repeated rows of a Sobol' design) share one cache entry and may
+  // finish together: each write needs a temporary of its own, or one renames the other's away.
+  const auto dir = fresh_dir("atomic_same_file");
+  fs::create_directories(dir);
+  const fs::path file = dir / "entry.json";
+  std::atomic<int> failures{0};
+  std::vector<std::thread> pool;
+  for (int t = 0; t < 8; ++t)
+    pool.emplace_back([&, t] {
+      for (int k = 0; k < 300; ++k) {
+        try {
+          dem::write_file_atomic(file, fmt::format("{{\"writer\": {}, \"k\": {}}}\n", t, k), false);
+        } catch (const dem::OutputError&) {
+          ++failures;
+        }
+      }
+    });
+  for (auto& th : pool) th.join();
+  CHECK(failures == 0);
+  CHECK(nlohmann::json::parse(slurp(file)).contains("writer"));  // whole, parseable
+  int left = 0;
+  for (const auto& e : fs::directory_iterator(dir)) left += e.path() != file;
+  CHECK(left == 0);  // no temporary left behind
 }
 
 TEST_CASE("A full disk or an unwritable folder is an error, never an empty result", "[outputs]") {

@@ -1,5 +1,6 @@
 #include "dem/run/output_files.hpp"
 
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -22,7 +23,10 @@ namespace {
 }  // namespace
 
 void write_file_atomic(const fs::path& file, std::string_view content, bool durable) {
-  const fs::path tmp = file.string() + ".tmp";
+  // A temporary name of its own per call: two threads (or processes) finishing the same file at once
+  // (a study's duplicate runs share one cache entry) must not rename each other's temporary away.
+  static std::atomic<unsigned long> serial{0};
+  const fs::path tmp = fmt::format("{}.{}-{}.tmp", file.string(), static_cast<long>(getpid()), serial++);
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) fail(file, "cannot write", errno);
   const bool wrote = std::fwrite(content.data(), 1, content.size(), f) == content.size();
@@ -88,6 +92,11 @@ bool is_run_output(const std::string& name) {
   std::string base = name;
   for (const char* suffix : {".tmp", ".partial"})
     if (base.size() > std::strlen(suffix) && base.ends_with(suffix)) base.resize(base.size() - std::strlen(suffix));
+  // write_file_atomic's temporaries are <name>.<pid>-<serial>.tmp
+  if (name.ends_with(".tmp"))
+    if (const auto dot = base.rfind('.'); dot != std::string::npos && dot + 1 < base.size() &&
+                                          base.find_first_not_of("0123456789-", dot + 1) == std::string::npos)
+      base.resize(dot);
   return base == "series.csv" || base == "summary.json" || base == "snapshots.pvd" || base == "vtk" || base == "pictures" ||
          base == "checkpoint.bin";
 }

@@ -15,7 +15,8 @@ struct OutputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Writes `content` to `file` via `file.tmp` + rename. Throws OutputError. `durable`: fsync before the
+/// Writes `content` to `file` via a temporary `file.<pid>-<serial>.tmp` of its own + rename (safe when
+/// several threads or processes finish the same file at once). Throws OutputError. `durable`: fsync before the
 /// rename (also survives a power cut; snapshots skip it for speed, a killed process never sees them half).
 void write_file_atomic(const std::filesystem::path& file, std::string_view content, bool durable = true);
 
