@@ -188,10 +188,12 @@ TEST_CASE("Sobol estimators: Ishigami and g-function indices inside the bootstra
     const SaltelliDesign des = saltelli_design(std::size_t{1} << 16, ps.size());
     std::vector<double> ga, gb;
     std::vector<std::vector<double>> gab(ps.size());
+    const auto& params = ps;  // clang 14 cannot capture a structured binding in a lambda
+    const auto& function = f;
     auto eval = [&](const std::vector<double>& u) {
       std::vector<double> x;
-      for (std::size_t i = 0; i < ps.size(); ++i) x.push_back(value_at(ps[i], u[i]));
-      return evaluate(f, x);
+      for (std::size_t i = 0; i < params.size(); ++i) x.push_back(value_at(params[i], u[i]));
+      return evaluate(function, x);
     };
     for (std::size_t j = 0; j < des.a.size(); ++j) {
       ga.push_back(eval(des.a[j]));
