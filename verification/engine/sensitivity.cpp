@@ -50,7 +50,9 @@ struct Sens {
   std::vector<std::size_t> convergence;     // function studies: Sobol' sample sizes for the error rate
   std::optional<double> expected_order;
   double order_band = 0.3;
-  sens::Transform transform = sens::Transform::none;  // [sobol] transform: indices of a monotone transform of the output
+  // [sobol] transforms: the indices of each listed monotone transform of the output, IN ADDITION to
+  // those of the output itself (sensitivity_transform.hpp).
+  std::vector<sens::Transform> transforms;
   int max_failed = 0;
   // Δt tied to the time-step guard: each run's Δt = dt_fraction × the guard's limit for that run's
   // parameters (stiffness, mass, damping move the limit). dt_fraction_base: the fraction is the base
@@ -225,11 +227,18 @@ Sens read_sens(const fs::path& file) {
       if (s.convergence[k] <= s.convergence[k - 1]) fail_at(s, t->get("convergence"), "sobol.convergence", "expected increasing sample sizes");
     if (auto p = (*t)["expected_order"].value<double>()) s.expected_order = *p;
     s.order_band = (*t)["order_band"].value_or(0.3);
-    if (const toml::node* tn = t->get("transform")) {
-      try {
-        s.transform = sens::parse_transform(tn->value_or(std::string("?")));
-      } catch (const std::exception& e) {
-        fail_at(s, tn, "sobol.transform", e.what());
+    if (const toml::node* tn = t->get("transforms")) {
+      const toml::array* ta = tn->as_array();
+      if (!ta) fail_at(s, tn, "sobol.transforms", "expected an array such as [\"rank\"] or [\"log\", \"rank\"]");
+      for (const auto& x : *ta) {
+        try {
+          const sens::Transform tf = sens::parse_transform(x.value_or(std::string("?")));
+          if (tf == sens::Transform::none) throw std::invalid_argument("\"none\" is always analysed; list \"log\" or \"rank\"");
+          if (std::find(s.transforms.begin(), s.transforms.end(), tf) != s.transforms.end()) throw std::invalid_argument("listed twice");
+          s.transforms.push_back(tf);
+        } catch (const std::exception& e) {
+          fail_at(s, &x, "sobol.transforms", e.what());
+        }
       }
     }
   }
@@ -505,10 +514,6 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
     }
     exact = sens::exact_indices(*s.function, lo, hi);
   }
-  // The Sobol' indices' exact values: those of the transformed output where the transform declares one.
-  sens::ExactIndices exact_sobol = exact;
-  if (s.function && s.transform == sens::Transform::log) exact_sobol = sens::exact_indices_of_log(*s.function);
-  if (s.function && s.transform == sens::Transform::rank) exact_sobol = {};
   std::ostringstream idx_csv;
   idx_csv << "method,output,parameter,index,estimate,low,high,exact\n";
   auto plain = [](const std::string& x) { return x; };
@@ -587,7 +592,15 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
                       {"rows", rows}});
   }
 
-  if (s.sobol) {
+  std::vector<sens::Transform> sobol_transforms = {sens::Transform::none};
+  sobol_transforms.insert(sobol_transforms.end(), s.transforms.begin(), s.transforms.end());
+  if (s.sobol) for (const sens::Transform transform : sobol_transforms) {
+    // The exact values of the indices of the (transformed) output, where known.
+    sens::ExactIndices exact_sobol = exact;
+    if (s.function && transform == sens::Transform::log) exact_sobol = sens::exact_indices_of_log(*s.function);
+    if (s.function && transform == sens::Transform::rank) exact_sobol = {};
+    // What names a check, figure or table of a transform: "" for the output itself.
+    const std::string tsuffix = transform == sens::Transform::none ? "" : ", " + sens::transformed_label(transform, "y");
     nlohmann::json rows = nlohmann::json::array();
     for (std::size_t o = 0; o < no; ++o) {
       std::vector<double> fa(n), fb(n);
@@ -597,8 +610,8 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
         fb[j] = runs[sobol_begin + n + j].outputs[o];
         for (std::size_t i = 0; i < d; ++i) fab[i][j] = runs[sobol_begin + (2 + i) * n + j].outputs[o];
       }
-      sens::apply_transform(s.transform, fa, fb, fab);
-      const std::string yname = sens::transformed_label(s.transform, s.outputs[o]);
+      sens::apply_transform(transform, fa, fb, fab);
+      const std::string yname = sens::transformed_label(transform, s.outputs[o]);
       const sens::SobolIndices si = sens::sobol_indices(fa, fb, fab, s.resamples, s.confidence);
       // Test functions: the bootstrap interval's width against the central limit theorem for N rows,
       // 2 z σ_∞ / √N, σ_∞ from 2^16 rows of the exact function (sensitivity_estimators.hpp).
@@ -617,7 +630,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
           gb[j] = f(des.b[j]);
           for (std::size_t i = 0; i < d; ++i) gab[i][j] = f(des.ab[i][j]);
         }
-        sens::apply_transform(s.transform, ga, gb, gab);
+        sens::apply_transform(transform, ga, gb, gab);
         const sens::SobolAsymptoticSd sd = sens::sobol_asymptotic_sd(ga, gb, gab);
         const double z = sens::normal_quantile(0.5 * (1.0 + s.confidence));
         // The bootstrap's own noise: a percentile of B resamples has standard error √(p(1−p)/B)/φ(z) in
@@ -633,7 +646,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
             if (!(sig > 0.0)) continue;  // an exact estimator (σ_∞ = 0): no width to compare
             const double clt = 2.0 * z * sig / std::sqrt(static_cast<double>(si.rows_used));
             const double w = iv.high - iv.low;
-            add_check(fmt::format("width of the {}_{} interval of {} ({}, N = {})", kind, i + 1, s.params[i].label, s.function->name, n),
+            add_check(fmt::format("width of the {}_{} interval of {} ({}, N = {}{})", kind, i + 1, s.params[i].label, s.function->name, n, tsuffix),
                       clt, w, std::abs(w - clt) / clt, band,
                       fmt::format("CLT: a {:.0f} % interval over N i.i.d. rows is 2 z σ_∞/√N wide (z = {:.4f}, σ_∞ from 2^16 rows); the "
                                   "bootstrap width within 3 × {:.1f} % (its {} resamples' quantile noise) + 10 % (finite-N skew) of it",
@@ -663,7 +676,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
           if (!ex.empty()) {
             const double e = std::abs(iv.estimate - ex[i]);
             const double tol = ex[i] < iv.estimate ? iv.estimate - iv.low : iv.high - iv.estimate;
-            add_check(fmt::format("{}_{} of {} ({}, N = {})", kind, i + 1, s.params[i].label, s.function->name, n), ex[i],
+            add_check(fmt::format("{}_{} of {} ({}, N = {}{})", kind, i + 1, s.params[i].label, s.function->name, n, tsuffix), ex[i],
                       iv.estimate, e, tol,
                       fmt::format("the {:.0f} % bootstrap interval ({} resamples of the N rows) must contain the exact value",
                                   100.0 * s.confidence, s.resamples),
@@ -711,16 +724,17 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
         }
         curves.push_back({{"label", "exact"}, {"x", xe}, {"y", ye}, {"style", "points"}});
       }
-      figures.push_back({{"id", fmt::format("sobol_{}", o)},
+      figures.push_back({{"id", transform == sens::Transform::none ? fmt::format("sobol_{}", o)
+                                                                    : fmt::format("sobol_{}_{}", sens::transform_name(transform), o)},
                          {"title", fmt::format("Sobol' indices of {} (N = {}, {} rows used)", yname, n, si.rows_used)},
                          {"xlabel", "parameter"}, {"ylabel", "index"}, {"logx", false}, {"logy", false}, {"curves", curves},
                          {"xticks", xticks}, {"xrange", {0.5, static_cast<double>(d) + 0.5}}});
     }
     tables.push_back({{"title", fmt::format("Sobol' indices (Saltelli sampling, N = {}, {} runs; {} % bootstrap intervals){}", n, n * (d + 2),
                                             100.0 * s.confidence,
-                                            s.transform == sens::Transform::none ? "" : fmt::format(
-                                                "; indices of the TRANSFORMED output {} (declared transform = \"{}\"), not of the output itself",
-                                                sens::transformed_label(s.transform, "y"), sens::transform_name(s.transform)))},
+                                            transform == sens::Transform::none ? "" : fmt::format(
+                                                ": indices of the TRANSFORMED output {} (declared transforms = [\"{}\"]), not of the output itself",
+                                                sens::transformed_label(transform, "y"), sens::transform_name(transform)))},
                       {"columns", {"output", "parameter", "S", "interval", "S_T", "interval", "exact S", "exact S_T", "S (Janon)", "interval"}},
                       {"rows", rows}});
     // Function studies: the error over doubling sample sizes, at the quasi-random rate.
@@ -741,7 +755,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
           fb.push_back(f(des.b[j]));
           for (std::size_t i = 0; i < d; ++i) fab[i].push_back(f(des.ab[i][j]));
         }
-        sens::apply_transform(s.transform, fa, fb, fab);
+        sens::apply_transform(transform, fa, fb, fab);
         const sens::SobolIndices si = sens::sobol_indices(fa, fb, fab, 0);
         double e = 0.0, ej = 0.0;
         for (std::size_t i = 0; i < d; ++i) {
@@ -756,25 +770,25 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
       ConvergenceOptions co;
       co.reference = 0.0;
       co.expected_order = s.expected_order;
-      const Series ser = analyse_convergence(h, err, co, fmt::format("max |index − exact| ({})", s.function->name), "1/N");
+      const Series ser = analyse_convergence(h, err, co, fmt::format("max |index − exact| ({}{})", s.function->name, tsuffix), "1/N");
       series.push_back(to_json(ser));
       const double p = ser.fitted_order.value_or(std::nan(""));
       if (s.expected_order)
-        add_check(fmt::format("order of the index error in N ({}, N = {} … {})", s.function->name, s.convergence.front(), s.convergence.back()),
+        add_check(fmt::format("order of the index error in N ({}, N = {} … {}{})", s.function->name, s.convergence.front(), s.convergence.back(), tsuffix),
                   0.0, err.back(), err.back(), NAN,
                   fmt::format("Sobol' points: error ~ N^-1 up to log factors (Monte Carlo: N^-1/2); least-squares order must be at least {} − {}",
                               *s.expected_order, s.order_band),
                   std::isfinite(p) && p >= *s.expected_order - s.order_band, "one-sided: faster than promised passes", p);
-      const Series serj = analyse_convergence(h, err_janon, co, fmt::format("max |S (Janon) − exact| ({})", s.function->name), "1/N");
+      const Series serj = analyse_convergence(h, err_janon, co, fmt::format("max |S (Janon) − exact| ({}{})", s.function->name, tsuffix), "1/N");
       series.push_back(to_json(serj));
       const double pj = serj.fitted_order.value_or(std::nan(""));
       if (s.expected_order)
-        add_check(fmt::format("order of the Janon first-order error in N ({}, N = {} … {})", s.function->name, s.convergence.front(), s.convergence.back()),
+        add_check(fmt::format("order of the Janon first-order error in N ({}, N = {} … {}{})", s.function->name, s.convergence.front(), s.convergence.back(), tsuffix),
                   0.0, err_janon.back(), err_janon.back(), NAN,
                   fmt::format("Sobol' points: error ~ N^-1 up to log factors (Monte Carlo: N^-1/2); least-squares order must be at least {} − {}",
                               *s.expected_order, s.order_band),
                   std::isfinite(pj) && pj >= *s.expected_order - s.order_band, "one-sided: faster than promised passes", pj);
-      tables.push_back({{"title", "Largest index error over doubling sample sizes"},
+      tables.push_back({{"title", "Largest index error over doubling sample sizes" + tsuffix},
                         {"columns", {"N", "max |S − exact|, |S_T − exact|", "max |S (Janon) − exact|"}}, {"rows", crow}});
     }
   }
