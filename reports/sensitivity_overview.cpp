@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <tuple>
 
 #include "study_result.hpp"
 #include "text_format.hpp"
@@ -13,7 +14,7 @@ namespace {
 
 struct Entry {
   std::string parameter, value, interval;
-  double x = NAN;
+  double x = NAN, low = NAN, high = NAN;  // the value and its interval "[low, high]" (NaN: none)
 };
 
 double parse(const nlohmann::json& cell) {
@@ -27,6 +28,34 @@ double parse(const nlohmann::json& cell) {
 
 std::string text(const nlohmann::json& cell) {
   return cell.is_string() ? cell.get<std::string>() : cell.is_null() ? std::string() : cell.dump();
+}
+
+/// "[a, b]" → a, b (NaN if not of that form).
+std::pair<double, double> bounds(const std::string& interval) {
+  double a = NAN, b = NAN;
+  if (interval.size() > 2 && interval.front() == '[') {
+    char* end = nullptr;
+    a = std::strtod(interval.c_str() + 1, &end);
+    if (end == interval.c_str() + 1) a = NAN;
+    if (const auto comma = interval.find(','); comma != std::string::npos) {
+      const char* p = interval.c_str() + comma + 1;
+      b = std::strtod(p, &end);
+      if (end == p) b = NAN;
+    }
+  }
+  return {a, b};
+}
+
+/// The parameters that cannot be told apart from `pick` by its interval: each other entry whose
+/// interval reaches into pick's (most: other.high >= pick.low; least: other.low <= pick.high).
+std::string overlapping(const std::vector<Entry>& entries, const Entry& pick, bool most) {
+  if (!std::isfinite(pick.low) || !std::isfinite(pick.high)) return {};
+  std::string names;
+  for (const auto& e : entries) {
+    if (&e == &pick || !std::isfinite(e.x) || !std::isfinite(e.low) || !std::isfinite(e.high)) continue;
+    if (most ? e.high >= pick.low : e.low <= pick.high) names += (names.empty() ? "" : ", ") + e.parameter;
+  }
+  return names.empty() ? std::string() : " (intervals overlap: " + names + ")";
 }
 
 bool starts(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
@@ -63,6 +92,7 @@ std::vector<SensitivityOverviewRow> sensitivity_overview_rows(const ReportConten
         if (rank < it->second.first) it->second = {rank, {}};
         Entry e{text(row[1]), text(row[value_col]), interval_col ? text(row[interval_col]) : std::string(), parse(row[value_col])};
         if (rank == 2) e.x = std::abs(e.x);
+        std::tie(e.low, e.high) = bounds(e.interval);
         it->second.second.push_back(e);
       }
     }
@@ -82,10 +112,10 @@ std::vector<SensitivityOverviewRow> sensitivity_overview_rows(const ReportConten
         if (!least || e.x < least->x) least = &e;
       }
       const std::string none(missing_value);
-      r.most = most ? most->parameter : none;
+      r.most = most ? most->parameter + overlapping(entries, *most, true) : none;
       r.most_value = most ? most->value : none;
       r.most_interval = most && !most->interval.empty() ? most->interval : none;
-      r.least = least ? least->parameter : none;
+      r.least = least ? least->parameter + overlapping(entries, *least, false) : none;
       r.least_value = least ? least->value : none;
       r.least_interval = least && !least->interval.empty() ? least->interval : none;
       r.runs = count(setup, "runs");

@@ -1,7 +1,9 @@
 // One table over every sensitivity study of the report: per study and output, the most and the least
 // influential parameter by the strongest measure the study computed (Sobol' total index S_T with its
 // interval, else Morris μ*, else the one-at-a-time range), runs and failed runs; each row links to
-// the study's section. Read from the studies' own tables in result.json (kind "sensitivity").
+// the study's section. Where other parameters' intervals overlap the chosen one's, they are named with
+// it ("h_n (intervals overlap: K_n, K_s/K_n)"): the data do not rank them. Read from the studies' own
+// tables in result.json (kind "sensitivity").
 #pragma once
 
 #include <string>

@@ -57,7 +57,7 @@ TEST_CASE("sensitivity overview: the strongest measure per output, most and leas
   REQUIRE(rows.size() == 4);  // x_0.2, x_0.1, rank(x_0.2) of the slope; peak of the beam; no row for the convergence study
   CHECK(rows[0].output == "x_0.2");
   CHECK(rows[0].measure == "S_T (Jansen)");  // Sobol' outranks Morris, whatever the table order
-  CHECK(rows[0].most == "h_n");
+  CHECK(rows[0].most == "h_n (intervals overlap: K_n)");  // K_n's [0.12, 3.4] reaches into h_n's [0.37, 4]
   CHECK(rows[0].most_value == "1.16");
   CHECK(rows[0].most_interval == "[0.37, 4]");
   CHECK(rows[0].least == "Δt");
@@ -68,7 +68,7 @@ TEST_CASE("sensitivity overview: the strongest measure per output, most and leas
   CHECK(rows[1].output == "x_0.1");
   CHECK(rows[1].most == "—");  // no finite index: nothing ranked
   CHECK(rows[2].output == "rank(x_0.2)");
-  CHECK(rows[2].most == "h_n");
+  CHECK(rows[2].most == "h_n");           // [0.67, 1.3] clear of K_n's [0.05, 0.14]
   CHECK(rows[2].least == "K_n");
   CHECK(rows[3].study == "sens_beam");
   CHECK(rows[3].measure == "μ* (Morris)");
