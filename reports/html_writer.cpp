@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "inline_svg.hpp"
+#include "sensitivity_overview.hpp"
 #include "text_format.hpp"
 
 namespace report {
@@ -125,6 +126,25 @@ std::string overview_section(const ReportContent& content) {
            cell(row.title) + num_cell(std::to_string(row.passed)) +
            num_cell(std::to_string(row.failed)) + cell(row.orders) + num_cell(row.wall_time) +
            status_cell(row.status) + "</tr>\n";
+  return out + "</tbody>\n</table>\n</section>\n";
+}
+
+/// Every sensitivity study in one table (sensitivity_overview.hpp); "" when there is none.
+std::string sensitivity_overview_section(const ReportContent& content) {
+  const auto rows = sensitivity_overview_rows(content);
+  if (rows.empty()) return {};
+  std::string out =
+      "<section id=\"sensitivity-overview\">\n<h2>Sensitivity studies: overview</h2>\n"
+      "<p>Per study and output, the most and the least influential parameter by the strongest measure the study "
+      "computed: the Sobol' total index S_T with its bootstrap interval, else Morris &mu;*, else the one-at-a-time range "
+      "(max &minus; min). Indices of a transformed output are labelled so (ln(y), rank(y)).</p>\n"
+      "<table class=\"overview\">\n<thead><tr>";
+  for (const auto& c : sensitivity_overview_columns) out += "<th>" + escape(c) + "</th>";
+  out += "</tr></thead>\n<tbody>\n";
+  for (const auto& r : rows)
+    out += fmt::format("<tr><td><a href=\"#{}\">{}</a></td>", r.anchor, escape(r.study)) + cell(r.output) + cell(r.measure) +
+           cell(r.most) + num_cell(r.most_value) + num_cell(r.most_interval) + cell(r.least) + num_cell(r.least_value) +
+           num_cell(r.least_interval) + num_cell(r.runs) + num_cell(r.failed) + "</tr>\n";
   return out + "</tbody>\n</table>\n</section>\n";
 }
 
@@ -262,6 +282,8 @@ std::string contents_nav(const ReportContent& content) {
   std::string out = "<nav id=\"toc\">\n<h2>Contents</h2>\n<ol>\n"
                     "<li><a href=\"#contents\">Studies: overview</a></li>\n"
                     "<li><a href=\"#summary\">Every check</a></li>\n";
+  if (!sensitivity_overview_rows(content).empty())
+    out += "<li><a href=\"#sensitivity-overview\">Sensitivity studies: overview</a></li>\n";
   for (const auto& study : content.studies) {
     auto title = text_field(study.source.result, "title");
     if (title.empty()) title = study_name(study.source);
@@ -286,6 +308,7 @@ std::string html_page(const ReportContent& content) {
   out += key_value_table(content.header, "meta") + "</header>\n";
   out += contents_nav(content) + "<main>\n";
   out += overview_section(content);
+  out += sensitivity_overview_section(content);
   out += summary_section(content);
   for (const auto& study : content.studies) out += study_section(study);
   if (!content.docs_html.empty())

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "sensitivity_overview.hpp"
 #include "text_format.hpp"
 
 namespace report {
@@ -214,6 +215,20 @@ std::string markdown_page(const ReportContent& content) {
                           columns.size());
       line[0] = "[" + escape(row.name) + "](#" + row.anchor + ")";
       line.back() = status_text(row.status);
+      out += table_line(line);
+    }
+    out += "\n";
+  }
+  if (const auto rows = sensitivity_overview_rows(content); !rows.empty()) {
+    out += "## Sensitivity studies: overview\n\nPer study and output, the most and the least influential parameter by the "
+           "strongest measure the study computed: the Sobol' total index S_T with its bootstrap interval, else Morris μ*, "
+           "else the one-at-a-time range (max − min).\n\n";
+    out += table_head(sensitivity_overview_columns);
+    for (const auto& r : rows) {
+      auto line = escaped({r.study, r.output, r.measure, r.most, r.most_value, r.most_interval, r.least, r.least_value,
+                           r.least_interval, r.runs, r.failed},
+                          sensitivity_overview_columns.size());
+      line[0] = "[" + escape(r.study) + "](#" + r.anchor + ")";
       out += table_line(line);
     }
     out += "\n";

@@ -24,6 +24,7 @@
 #include "engine/sensitivity_estimators.hpp"
 #include "engine/sensitivity_functions.hpp"
 #include "engine/sensitivity_sampling.hpp"
+#include "engine/sensitivity_transform.hpp"
 
 namespace fs = std::filesystem;
 
@@ -49,6 +50,9 @@ struct Sens {
   std::vector<std::size_t> convergence;     // function studies: Sobol' sample sizes for the error rate
   std::optional<double> expected_order;
   double order_band = 0.3;
+  // [sobol] transforms: the indices of each listed monotone transform of the output, IN ADDITION to
+  // those of the output itself (sensitivity_transform.hpp).
+  std::vector<sens::Transform> transforms;
   int max_failed = 0;
   // Δt tied to the time-step guard: each run's Δt = dt_fraction × the guard's limit for that run's
   // parameters (stiffness, mass, damping move the limit). dt_fraction_base: the fraction is the base
@@ -223,6 +227,20 @@ Sens read_sens(const fs::path& file) {
       if (s.convergence[k] <= s.convergence[k - 1]) fail_at(s, t->get("convergence"), "sobol.convergence", "expected increasing sample sizes");
     if (auto p = (*t)["expected_order"].value<double>()) s.expected_order = *p;
     s.order_band = (*t)["order_band"].value_or(0.3);
+    if (const toml::node* tn = t->get("transforms")) {
+      const toml::array* ta = tn->as_array();
+      if (!ta) fail_at(s, tn, "sobol.transforms", "expected an array such as [\"rank\"] or [\"log\", \"rank\"]");
+      for (const auto& x : *ta) {
+        try {
+          const sens::Transform tf = sens::parse_transform(x.value_or(std::string("?")));
+          if (tf == sens::Transform::none) throw std::invalid_argument("\"none\" is always analysed; list \"log\" or \"rank\"");
+          if (std::find(s.transforms.begin(), s.transforms.end(), tf) != s.transforms.end()) throw std::invalid_argument("listed twice");
+          s.transforms.push_back(tf);
+        } catch (const std::exception& e) {
+          fail_at(s, &x, "sobol.transforms", e.what());
+        }
+      }
+    }
   }
   if (s.sobol && 2 * s.params.size() > 40) fail_at(s, pn, "parameter", "Sobol': at most 20 parameters (GSL's sequence has 40 dimensions)");
   return s;
@@ -249,6 +267,7 @@ struct Runner {
   fs::path cache_dir;
   double dt_fraction = 0.0;  // > 0: Δt = dt_fraction × the guard's limit of each run
   std::atomic<int> reused{0}, ran{0};
+  int duplicates = 0;  // runs with the same overrides as an earlier run of the study: run once, result shared
 
   void run_function(Run& r) const {
     std::vector<double> x;
@@ -283,6 +302,11 @@ struct Runner {
     const fs::path case_file = fs::absolute(s.root / s.case_path);
     // Δt tied to the guard: each run's limit first (in parallel; a refusal is the run's result).
     std::vector<char> settled(runs.size(), 0);
+    // A design may hold the same point more than once (Saltelli's row 0 is the origin in A, B and
+    // every AB_i; integer parameters repeat values): the same overrides are the same cache entry, so
+    // each is run once and its reply goes to every run that shares the entry.
+    std::map<fs::path, std::size_t> request_of;        // cache entry → index into reqs
+    std::vector<std::vector<std::size_t>> shared_by;   // per request: the further runs that use its reply
     if (dt_fraction > 0.0)
       parallel_for(runs.size(), jobs, [&](std::size_t k) {
         Run& r = runs[k];
@@ -308,6 +332,13 @@ struct Runner {
         ++reused;
         continue;
       }
+      if (const auto it = request_of.find(entry); it != request_of.end()) {
+        shared_by[it->second].push_back(k);
+        ++duplicates;
+        continue;
+      }
+      request_of.emplace(entry, reqs.size());
+      shared_by.emplace_back();
       reqs.push_back({case_file, r.sets, {}, run_cost(c)});
       slot.push_back(k);
       entries.push_back(entry);
@@ -326,6 +357,12 @@ struct Runner {
       write_cached(entries[i], {r.status, r.message, 0.0, rep.probes}, case_paths[i], r.sets);  // at once
       ++ran;
     });
+    for (std::size_t i = 0; i < reqs.size(); ++i)
+      for (std::size_t k : shared_by[i]) {
+        runs[k].status = runs[slot[i]].status;
+        runs[k].message = runs[slot[i]].message;
+        probes[k] = probes[slot[i]];
+      }
     for (std::size_t k = 0; k < runs.size(); ++k) {  // the first failure in run order
       if (runs[k].status == "interrupted") throw StudyInterrupted(fmt::format("sensitivity {}: {}", s.name, runs[k].message));
       if (runs[k].status == "error") throw std::runtime_error(runs[k].message);
@@ -555,7 +592,15 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
                       {"rows", rows}});
   }
 
-  if (s.sobol) {
+  std::vector<sens::Transform> sobol_transforms = {sens::Transform::none};
+  sobol_transforms.insert(sobol_transforms.end(), s.transforms.begin(), s.transforms.end());
+  if (s.sobol) for (const sens::Transform transform : sobol_transforms) {
+    // The exact values of the indices of the (transformed) output, where known.
+    sens::ExactIndices exact_sobol = exact;
+    if (s.function && transform == sens::Transform::log) exact_sobol = sens::exact_indices_of_log(*s.function);
+    if (s.function && transform == sens::Transform::rank) exact_sobol = {};
+    // What names a check, figure or table of a transform: "" for the output itself.
+    const std::string tsuffix = transform == sens::Transform::none ? "" : ", " + sens::transformed_label(transform, "y");
     nlohmann::json rows = nlohmann::json::array();
     for (std::size_t o = 0; o < no; ++o) {
       std::vector<double> fa(n), fb(n);
@@ -565,6 +610,8 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
         fb[j] = runs[sobol_begin + n + j].outputs[o];
         for (std::size_t i = 0; i < d; ++i) fab[i][j] = runs[sobol_begin + (2 + i) * n + j].outputs[o];
       }
+      sens::apply_transform(transform, fa, fb, fab);
+      const std::string yname = sens::transformed_label(transform, s.outputs[o]);
       const sens::SobolIndices si = sens::sobol_indices(fa, fb, fab, s.resamples, s.confidence);
       // Test functions: the bootstrap interval's width against the central limit theorem for N rows,
       // 2 z σ_∞ / √N, σ_∞ from 2^16 rows of the exact function (sensitivity_estimators.hpp).
@@ -583,6 +630,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
           gb[j] = f(des.b[j]);
           for (std::size_t i = 0; i < d; ++i) gab[i][j] = f(des.ab[i][j]);
         }
+        sens::apply_transform(transform, ga, gb, gab);
         const sens::SobolAsymptoticSd sd = sens::sobol_asymptotic_sd(ga, gb, gab);
         const double z = sens::normal_quantile(0.5 * (1.0 + s.confidence));
         // The bootstrap's own noise: a percentile of B resamples has standard error √(p(1−p)/B)/φ(z) in
@@ -593,10 +641,12 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
         const double quantile_noise = std::sqrt(2.0) * std::sqrt(p_end * (1.0 - p_end) / static_cast<double>(s.resamples)) / phi_z / (2.0 * z);
         const double band = 3.0 * quantile_noise + 0.1;
         for (std::size_t i = 0; i < d; ++i)
-          for (const auto& [kind, iv, sig] : {std::tuple{"S", si.first[i], sd.first[i]}, std::tuple{"ST", si.total[i], sd.total[i]}}) {
+          for (const auto& [kind, iv, sig] : {std::tuple{"S", si.first[i], sd.first[i]}, std::tuple{"ST", si.total[i], sd.total[i]},
+                                              std::tuple{"S(Janon)", si.first_janon[i], sd.first_janon[i]}}) {
+            if (!(sig > 0.0)) continue;  // an exact estimator (σ_∞ = 0): no width to compare
             const double clt = 2.0 * z * sig / std::sqrt(static_cast<double>(si.rows_used));
             const double w = iv.high - iv.low;
-            add_check(fmt::format("width of the {}_{} interval of {} ({}, N = {})", kind, i + 1, s.params[i].label, s.function->name, n),
+            add_check(fmt::format("width of the {}_{} interval of {} ({}, N = {}{})", kind, i + 1, s.params[i].label, s.function->name, n, tsuffix),
                       clt, w, std::abs(w - clt) / clt, band,
                       fmt::format("CLT: a {:.0f} % interval over N i.i.d. rows is 2 z σ_∞/√N wide (z = {:.4f}, σ_∞ from 2^16 rows); the "
                                   "bootstrap width within 3 × {:.1f} % (its {} resamples' quantile noise) + 10 % (finite-N skew) of it",
@@ -613,18 +663,20 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
         xt.push_back(x + 0.11);
         ys.push_back(si.first[i].estimate);
         yt.push_back(si.total[i].estimate);
-        rows.push_back({s.outputs[o], s.params[i].label, num(si.first[i].estimate),
+        rows.push_back({yname, s.params[i].label, num(si.first[i].estimate),
                         fmt::format("[{}, {}]", num(si.first[i].low), num(si.first[i].high)), num(si.total[i].estimate),
                         fmt::format("[{}, {}]", num(si.total[i].low), num(si.total[i].high)),
-                        exact.first.empty() ? "" : num(exact.first[i]), exact.total.empty() ? "" : num(exact.total[i])});
-        for (const auto& [kind, iv, ex] : {std::tuple{"S", si.first[i], exact.first}, std::tuple{"ST", si.total[i], exact.total}}) {
-          idx_csv << "sobol," << s.outputs[o] << ",\"" << s.params[i].label << "\"," << kind << ","
+                        exact_sobol.first.empty() ? "" : num(exact_sobol.first[i]), exact_sobol.total.empty() ? "" : num(exact_sobol.total[i]),
+                        num(si.first_janon[i].estimate), fmt::format("[{}, {}]", num(si.first_janon[i].low), num(si.first_janon[i].high))});
+        for (const auto& [kind, iv, ex] : {std::tuple{"S", si.first[i], exact_sobol.first}, std::tuple{"ST", si.total[i], exact_sobol.total},
+                                           std::tuple{"S_janon", si.first_janon[i], exact_sobol.first}}) {
+          idx_csv << "sobol," << yname << ",\"" << s.params[i].label << "\"," << kind << ","
                   << fmt::format("{:.17g},{:.17g},{:.17g},", iv.estimate, iv.low, iv.high)
                   << (ex.empty() ? std::string() : fmt::format("{:.17g}", ex[i])) << "\n";
           if (!ex.empty()) {
             const double e = std::abs(iv.estimate - ex[i]);
             const double tol = ex[i] < iv.estimate ? iv.estimate - iv.low : iv.high - iv.estimate;
-            add_check(fmt::format("{}_{} of {} ({}, N = {})", kind, i + 1, s.params[i].label, s.function->name, n), ex[i],
+            add_check(fmt::format("{}_{} of {} ({}, N = {}{})", kind, i + 1, s.params[i].label, s.function->name, n, tsuffix), ex[i],
                       iv.estimate, e, tol,
                       fmt::format("the {:.0f} % bootstrap interval ({} resamples of the N rows) must contain the exact value",
                                   100.0 * s.confidence, s.resamples),
@@ -648,31 +700,46 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
         return a;
       };
       curves.push_back({{"label", "first order S (Saltelli 2010)"}, {"x", xi}, {"y", jv(ys)}, {"style", "boxes"}, {"width", 0.2}});
+      {  // Janon's first order as points with their interval between the bars
+        std::vector<double> xj, yj, jlo, jhi;
+        for (std::size_t i = 0; i < d; ++i) {
+          xj.push_back(static_cast<double>(i + 1));
+          yj.push_back(si.first_janon[i].estimate);
+          jlo.push_back(si.first_janon[i].low);
+          jhi.push_back(si.first_janon[i].high);
+        }
+        curves.push_back({{"label", fmt::format("first order S (Janon 2014), {:.0f} % bootstrap interval", 100.0 * s.confidence)},
+                          {"x", xj}, {"y", jv(yj)}, {"ylow", jv(jlo)}, {"yhigh", jv(jhi)}, {"style", "errorbars"}, {"colour", "#b03000"}});
+      }
       curves.push_back({{"label", "total S_T (Jansen)"}, {"x", xt}, {"y", jv(yt)}, {"style", "boxes"}, {"width", 0.2}});
       curves.push_back({{"label", fmt::format("S, {:.0f} % bootstrap interval", 100.0 * s.confidence)}, {"x", xi}, {"y", jv(ys)},
                         {"ylow", jv(s_lo)}, {"yhigh", jv(s_hi)}, {"style", "errorbars"}, {"colour", "#000000"}});
       curves.push_back({{"label", fmt::format("S_T, {:.0f} % bootstrap interval", 100.0 * s.confidence)}, {"x", xt}, {"y", jv(yt)},
                         {"ylow", jv(t_lo)}, {"yhigh", jv(t_hi)}, {"style", "errorbars"}, {"colour", "#555555"}});
-      if (!exact.first.empty()) {
+      if (!exact_sobol.first.empty()) {
         std::vector<double> xe, ye;
         for (std::size_t i = 0; i < d; ++i) {
           xe.insert(xe.end(), {xi[i], xt[i]});
-          ye.insert(ye.end(), {exact.first[i], exact.total[i]});
+          ye.insert(ye.end(), {exact_sobol.first[i], exact_sobol.total[i]});
         }
         curves.push_back({{"label", "exact"}, {"x", xe}, {"y", ye}, {"style", "points"}});
       }
-      figures.push_back({{"id", fmt::format("sobol_{}", o)},
-                         {"title", fmt::format("Sobol' indices of {} (N = {}, {} rows used)", s.outputs[o], n, si.rows_used)},
+      figures.push_back({{"id", transform == sens::Transform::none ? fmt::format("sobol_{}", o)
+                                                                    : fmt::format("sobol_{}_{}", sens::transform_name(transform), o)},
+                         {"title", fmt::format("Sobol' indices of {} (N = {}, {} rows used)", yname, n, si.rows_used)},
                          {"xlabel", "parameter"}, {"ylabel", "index"}, {"logx", false}, {"logy", false}, {"curves", curves},
                          {"xticks", xticks}, {"xrange", {0.5, static_cast<double>(d) + 0.5}}});
     }
-    tables.push_back({{"title", fmt::format("Sobol' indices (Saltelli sampling, N = {}, {} runs; {} % bootstrap intervals)", n, n * (d + 2),
-                                            100.0 * s.confidence)},
-                      {"columns", {"output", "parameter", "S", "interval", "S_T", "interval", "exact S", "exact S_T"}},
+    tables.push_back({{"title", fmt::format("Sobol' indices (Saltelli sampling, N = {}, {} runs; {} % bootstrap intervals){}", n, n * (d + 2),
+                                            100.0 * s.confidence,
+                                            transform == sens::Transform::none ? "" : fmt::format(
+                                                ": indices of the TRANSFORMED output {} (declared transforms = [\"{}\"]), not of the output itself",
+                                                sens::transformed_label(transform, "y"), sens::transform_name(transform)))},
+                      {"columns", {"output", "parameter", "S", "interval", "S_T", "interval", "exact S", "exact S_T", "S (Janon)", "interval"}},
                       {"rows", rows}});
     // Function studies: the error over doubling sample sizes, at the quasi-random rate.
-    if (s.function && !s.convergence.empty()) {
-      std::vector<double> h, err;
+    if (s.function && !s.convergence.empty() && !exact_sobol.first.empty()) {
+      std::vector<double> h, err, err_janon;
       nlohmann::json crow = nlohmann::json::array();
       for (std::size_t nn : s.convergence) {
         const sens::SaltelliDesign des = sens::saltelli_design(nn, d);
@@ -688,27 +755,41 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
           fb.push_back(f(des.b[j]));
           for (std::size_t i = 0; i < d; ++i) fab[i].push_back(f(des.ab[i][j]));
         }
+        sens::apply_transform(transform, fa, fb, fab);
         const sens::SobolIndices si = sens::sobol_indices(fa, fb, fab, 0);
-        double e = 0.0;
-        for (std::size_t i = 0; i < d; ++i)
-          e = std::max({e, std::abs(si.first[i].estimate - exact.first[i]), std::abs(si.total[i].estimate - exact.total[i])});
+        double e = 0.0, ej = 0.0;
+        for (std::size_t i = 0; i < d; ++i) {
+          e = std::max({e, std::abs(si.first[i].estimate - exact_sobol.first[i]), std::abs(si.total[i].estimate - exact_sobol.total[i])});
+          ej = std::max(ej, std::abs(si.first_janon[i].estimate - exact_sobol.first[i]));
+        }
         h.push_back(1.0 / static_cast<double>(nn));
         err.push_back(e);
-        crow.push_back({std::to_string(nn), num(e)});
+        err_janon.push_back(ej);
+        crow.push_back({std::to_string(nn), num(e), num(ej)});
       }
       ConvergenceOptions co;
       co.reference = 0.0;
       co.expected_order = s.expected_order;
-      const Series ser = analyse_convergence(h, err, co, fmt::format("max |index − exact| ({})", s.function->name), "1/N");
+      const Series ser = analyse_convergence(h, err, co, fmt::format("max |index − exact| ({}{})", s.function->name, tsuffix), "1/N");
       series.push_back(to_json(ser));
       const double p = ser.fitted_order.value_or(std::nan(""));
       if (s.expected_order)
-        add_check(fmt::format("order of the index error in N ({}, N = {} … {})", s.function->name, s.convergence.front(), s.convergence.back()),
+        add_check(fmt::format("order of the index error in N ({}, N = {} … {}{})", s.function->name, s.convergence.front(), s.convergence.back(), tsuffix),
                   0.0, err.back(), err.back(), NAN,
                   fmt::format("Sobol' points: error ~ N^-1 up to log factors (Monte Carlo: N^-1/2); least-squares order must be at least {} − {}",
                               *s.expected_order, s.order_band),
                   std::isfinite(p) && p >= *s.expected_order - s.order_band, "one-sided: faster than promised passes", p);
-      tables.push_back({{"title", "Largest index error over doubling sample sizes"}, {"columns", {"N", "max |S − exact|, |S_T − exact|"}}, {"rows", crow}});
+      const Series serj = analyse_convergence(h, err_janon, co, fmt::format("max |S (Janon) − exact| ({}{})", s.function->name, tsuffix), "1/N");
+      series.push_back(to_json(serj));
+      const double pj = serj.fitted_order.value_or(std::nan(""));
+      if (s.expected_order)
+        add_check(fmt::format("order of the Janon first-order error in N ({}, N = {} … {}{})", s.function->name, s.convergence.front(), s.convergence.back(), tsuffix),
+                  0.0, err_janon.back(), err_janon.back(), NAN,
+                  fmt::format("Sobol' points: error ~ N^-1 up to log factors (Monte Carlo: N^-1/2); least-squares order must be at least {} − {}",
+                              *s.expected_order, s.order_band),
+                  std::isfinite(pj) && pj >= *s.expected_order - s.order_band, "one-sided: faster than promised passes", pj);
+      tables.push_back({{"title", "Largest index error over doubling sample sizes" + tsuffix},
+                        {"columns", {"N", "max |S − exact|, |S_T − exact|", "max |S (Janon) − exact|"}}, {"rows", crow}});
     }
   }
   dem::write_file_atomic(out / "indices.csv", idx_csv.str(), false);
@@ -748,6 +829,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
   prov["overrides"] = s.set;
   prov["runs_reused"] = runner.reused.load();
   prov["runs_run"] = runner.ran.load();
+  prov["runs_duplicate"] = runner.duplicates;  // same overrides as another run of the study: its result shared
   std::string params;
   for (const auto& p : s.params) params += (params.empty() ? "" : ", ") + p.label;
   nlohmann::json result = {

@@ -10,7 +10,7 @@ namespace ver::sens {
 namespace {
 
 struct Point {
-  std::vector<double> first, total;
+  std::vector<double> first, total, first_janon;
 };
 
 /// The estimators over the rows `rows` (indices into the outputs, repeats allowed).
@@ -24,15 +24,21 @@ Point estimate(const std::vector<double>& fa, const std::vector<double>& fb, con
   double var = 0.0;
   for (std::size_t j : rows) var += (fa[j] - mean) * (fa[j] - mean) + (fb[j] - mean) * (fb[j] - mean);
   var /= 2.0 * n - 1.0;
-  Point p{std::vector<double>(d, 0.0), std::vector<double>(d, 0.0)};
+  Point p{std::vector<double>(d, 0.0), std::vector<double>(d, 0.0), std::vector<double>(d, 0.0)};
   for (std::size_t i = 0; i < d; ++i) {
     double s = 0.0, t = 0.0;
+    double yy = 0.0, ym = 0.0, y2 = 0.0;  // Janon: Σ Y Y^i, Σ (Y + Y^i)/2, Σ (Y² + Y^i²)/2
     for (std::size_t j : rows) {
       s += fb[j] * (fab[i][j] - fa[j]);                      // Saltelli 2010 first order
       t += (fa[j] - fab[i][j]) * (fa[j] - fab[i][j]);        // Jansen total
+      yy += fb[j] * fab[i][j];
+      ym += 0.5 * (fb[j] + fab[i][j]);
+      y2 += 0.5 * (fb[j] * fb[j] + fab[i][j] * fab[i][j]);
     }
     p.first[i] = var > 0.0 ? s / n / var : 0.0;
     p.total[i] = var > 0.0 ? t / (2.0 * n) / var : 0.0;
+    const double m = ym / n, den = y2 / n - m * m;           // Janon et al. 2014 first order
+    p.first_janon[i] = den > 0.0 ? (yy / n - m * m) / den : 0.0;
   }
   return p;
 }
@@ -64,8 +70,9 @@ SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<doub
   out.rows_used = rows.size();
   out.first.resize(d);
   out.total.resize(d);
+  out.first_janon.resize(d);
   if (rows.size() < 2) {
-    for (auto* v : {&out.first, &out.total})
+    for (auto* v : {&out.first, &out.total, &out.first_janon})
       for (auto& x : *v) x = {std::nan(""), std::nan(""), std::nan("")};
     return out;
   }
@@ -78,7 +85,7 @@ SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<doub
     out.variance /= 2.0 * static_cast<double>(rows.size()) - 1.0;
   }
   std::mt19937_64 rng(seed);
-  std::vector<std::vector<double>> bs_first(d), bs_total(d);
+  std::vector<std::vector<double>> bs_first(d), bs_total(d), bs_janon(d);
   std::vector<std::size_t> sample(rows.size());
   for (std::size_t b = 0; b < resamples; ++b) {
     for (auto& s : sample) s = rows[static_cast<std::size_t>(rng() % rows.size())];
@@ -86,6 +93,7 @@ SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<doub
     for (std::size_t i = 0; i < d; ++i) {
       bs_first[i].push_back(q.first[i]);
       bs_total[i].push_back(q.total[i]);
+      bs_janon[i].push_back(q.first_janon[i]);
     }
   }
   const double lo = 0.5 * (1.0 - confidence), hi = 1.0 - lo;
@@ -94,6 +102,8 @@ SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<doub
                     resamples ? quantile(bs_first[i], hi) : p.first[i]};
     out.total[i] = {p.total[i], resamples ? quantile(bs_total[i], lo) : p.total[i],
                     resamples ? quantile(bs_total[i], hi) : p.total[i]};
+    out.first_janon[i] = {p.first_janon[i], resamples ? quantile(bs_janon[i], lo) : p.first_janon[i],
+                          resamples ? quantile(bs_janon[i], hi) : p.first_janon[i]};
   }
   return out;
 }
@@ -136,6 +146,28 @@ SobolAsymptoticSd sobol_asymptotic_sd(const std::vector<double>& fa, const std::
     }
     out.first.push_back(sd(z1));
     out.total.push_back(sd(zt));
+    // Janon et al. 2014 (asymptotic normality): σ_∞² = Var[(Y − μ_i)(Y^i − μ_i) − S ((Y − μ_i)² + (Y^i − μ_i)²)/2] / V_i²
+    // with Y = f(B), Y^i = f(AB_i) (they share x_i), μ_i, V_i their pooled mean and variance.
+    double mi = 0.0;
+    for (std::size_t j = 0; j < n; ++j) mi += 0.5 * (fb[j] + fab[i][j]);
+    mi /= static_cast<double>(n);
+    double c = 0.0, vi = 0.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      c += (fb[j] - mi) * (fab[i][j] - mi);
+      vi += 0.5 * ((fb[j] - mi) * (fb[j] - mi) + (fab[i][j] - mi) * (fab[i][j] - mi));
+    }
+    c /= static_cast<double>(n);
+    vi /= static_cast<double>(n);
+    const double sj = vi > 0.0 ? c / vi : 0.0;
+    double m = 0.0, m2 = 0.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double a = fb[j] - mi, b = fab[i][j] - mi;
+      const double psi = a * b - sj * 0.5 * (a * a + b * b);
+      m += psi;
+      m2 += psi * psi;
+    }
+    m /= static_cast<double>(n);
+    out.first_janon.push_back(vi > 0.0 ? std::sqrt(std::max(0.0, m2 / static_cast<double>(n) - m * m)) / vi : 0.0);
   }
   return out;
 }

@@ -17,13 +17,20 @@ struct Interval {
 
 struct SobolIndices {
   std::vector<Interval> first, total;  // per parameter
+  std::vector<Interval> first_janon;   // per parameter: the first order by Janon et al. (below)
   double variance = 0.0;               // Var Y over A ∪ B
   std::size_t rows_used = 0;           // rows with every output available
 };
 
 /// First-order index (Saltelli et al. 2010, Table 2 (b)):  S_i  = mean_j f(B)_j (f(AB_i)_j − f(A)_j) / V
 /// Total index (Jansen 1999; Saltelli et al. 2010, Table 2 (f)): S_Ti = mean_j (f(A)_j − f(AB_i)_j)² / (2 V)
-/// V = the variance of f over A and B together. Bootstrap: `resamples` draws of the rows with
+/// V = the variance of f over A and B together.
+/// First order also by Janon, Klein, Lagnoux, Nodet & Prieur 2014 (ESAIM: P&S 18, 342–364),
+/// with Y = f(B), Y^i = f(AB_i) (they share only x_i), m = mean_j (Y + Y^i)/2:
+///   S_i = (mean_j Y Y^i − m²) / (mean_j (Y² + Y^i²)/2 − m²)
+/// centred on the pair's own mean and normalised by the pair's own variance: asymptotically efficient
+/// among such estimators, no uncentred f factor (Saltelli's first order for f = x: σ_∞² = 7.4, this: 0).
+/// The bootstrap draws the same rows for all three estimators (the Saltelli/Jansen results do not change). Bootstrap: `resamples` draws of the rows with
 /// replacement (std::mt19937_64, seed), percentile interval at `confidence` (e.g. 0.95).
 SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<double>& fb,
                            const std::vector<std::vector<double>>& fab, std::size_t resamples = 1000,
@@ -36,8 +43,10 @@ SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<doub
 /// with S, μ, V estimated from the given rows (a large design gives the population values). The
 /// percentile bootstrap over N rows estimates the same spread, so its interval is about
 /// 2 z_{(1+c)/2} σ_∞ / √N wide (z = 1.96 at c = 0.95).
+/// Janon's first order: σ_∞² = Var[(Y − m)(Y^i − m) − S ((Y − m)² + (Y^i − m)²)/2] / V_i² (their asymptotic normality result).
 struct SobolAsymptoticSd {
   std::vector<double> first, total;  // σ_∞ per parameter
+  std::vector<double> first_janon;   // σ_∞ of Janon's first order per parameter
 };
 SobolAsymptoticSd sobol_asymptotic_sd(const std::vector<double>& fa, const std::vector<double>& fb,
                                       const std::vector<std::vector<double>>& fab);

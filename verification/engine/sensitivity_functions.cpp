@@ -70,4 +70,25 @@ ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low
   return e;
 }
 
+ExactIndices exact_indices_of_log(const TestFunction& f) {
+  ExactIndices e;
+  if (f.name != "g") return e;
+  for (double a : f.coefficients)
+    if (!(a > 0.0)) return e;
+  auto f1 = [](double t) { return t * std::log(t) - t; };
+  auto f2 = [](double t) { return t * std::log(t) * std::log(t) - 2.0 * t * std::log(t) + 2.0 * t; };
+  std::vector<double> v;
+  double var = 0.0;
+  for (double a : f.coefficients) {
+    const double m1 = 0.5 * (f1(a + 2.0) - f1(a)), m2 = 0.5 * (f2(a + 2.0) - f2(a));
+    v.push_back(m2 - m1 * m1);
+    var += v.back();
+  }
+  for (double vi : v) {
+    e.first.push_back(vi / var);
+    e.total.push_back(vi / var);
+  }
+  return e;
+}
+
 }  // namespace ver::sens

@@ -27,6 +27,12 @@ struct ExactIndices {
 };
 ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low, const std::vector<double>& high);
 
+/// The exact indices of ln f where known: the g-function with every a_i > 0, whose logarithm
+/// ln g = Σ ln(|4 x_i − 2| + a_i) − ln(1 + a_i) is additive, so S_i = S_Ti = V_i / Σ V_j with
+/// V_i = Var ln(t), t ~ U[a_i, a_i + 2] (closed form: ∫ ln t = t ln t − t, ∫ ln² t = t ln² t − 2 t ln t + 2 t).
+/// Empty for the other functions (ln of a function that changes sign is not defined).
+ExactIndices exact_indices_of_log(const TestFunction& f);
+
 /// How many inputs the function takes (0: any).
 std::size_t dimension(const TestFunction& f);
 
