@@ -3,6 +3,7 @@
 // time-step guard (dt_fraction) and parameters that set further paths (also) reach the runs.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -119,4 +120,50 @@ TEST_CASE("dt_fraction ties each run's time step to the guard's limit, and also 
   }
   CHECK_THROWS_WITH(ver::run_sensitivity(h, quiet(test::fresh_dir("dem2d_unit_sweep", "sweep_bad_out"))),
                     Contains("sensitivity.toml:") && Contains("dt_fraction"));
+}
+
+namespace {
+
+/// Column `col` of every row of a runs.csv (no quoted commas before it).
+std::vector<double> csv_column(const std::string& csv, std::size_t col) {
+  std::vector<double> v;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
+    REQUIRE(cells.size() > col);
+    v.push_back(std::stod(cells[col]));
+  }
+  return v;
+}
+
+}  // namespace
+
+TEST_CASE("replicates: each sample is the mean of its replicates, a replicate may not override a parameter", "[sensitivity]") {
+  // The resting disk's overlap m g / K is linear in g: the mean over g = 8 and 12 m/s² is the overlap at
+  // g = 10 m/s², row by row (7 samples, 14 DEM runs).
+  const fs::path f = sweep_file("sweep_rep", "replicates = [[\"physics.gravity=[0,-8]\"], [\"physics.gravity=[0,-12]\"]]\n");
+  const fs::path out = test::fresh_dir("dem2d_unit_sweep", "sweep_rep_out");
+  const auto r = ver::run_sensitivity(f, quiet(out));
+  CHECK(r.passed);
+  CHECK(r.json["provenance"]["runs_run"] == 14);
+  const fs::path g = sweep_file("sweep_rep_ref", "set = [\"physics.gravity=[0,-10]\"]\n");
+  const fs::path out_ref = test::fresh_dir("dem2d_unit_sweep", "sweep_rep_ref_out");
+  const auto rr = ver::run_sensitivity(g, quiet(out_ref));
+  CHECK(rr.json["provenance"]["runs_run"] == 7);
+  const std::vector<double> mean = csv_column(slurp(out / "runs.csv"), 4), ref = csv_column(slurp(out_ref / "runs.csv"), 4);
+  REQUIRE(mean.size() == 7);
+  REQUIRE(ref.size() == 7);
+  for (std::size_t k = 0; k < 7; ++k) CHECK(mean[k] == Approx(ref[k]).epsilon(1e-9));
+  CHECK(std::abs(ref[1]) > 7.0 * std::abs(ref[3]));  // K × 8 over the sweep: the rows differ (not a trivial comparison)
+  // A replicate that sets a parameter's path is refused, with the place.
+  const fs::path h = sweep_file("sweep_rep_bad", "replicates = [[\"contact.0.kn=1e6\"], [\"contact.0.kn=2e6\"]]\n");
+  CHECK_THROWS_WITH(ver::run_sensitivity(h, quiet(test::fresh_dir("dem2d_unit_sweep", "sweep_rep_bad_out"))),
+                    Contains("sensitivity.toml:") && Contains("replicates") && Contains("contact.0.kn"));
+  const fs::path one = sweep_file("sweep_rep_one", "replicates = [[\"physics.gravity=[0,-8]\"]]\n");
+  CHECK_THROWS_WITH(ver::run_sensitivity(one, quiet(test::fresh_dir("dem2d_unit_sweep", "sweep_rep_one_out"))),
+                    Contains("at least 2"));
 }

@@ -59,6 +59,10 @@ struct Sens {
   // case's own Δt / limit (so the base run keeps the case's Δt).
   std::optional<double> dt_fraction;
   bool dt_fraction_base = false;
+  // Replicates: every sample runs once per entry (that entry's overrides after the sample's) and its
+  // outputs are the mean over the entries — for outputs with run-to-run noise (a silo's discharge rate
+  // set by which arches form): the noise of the mean falls as 1/√(entries).
+  std::vector<std::vector<std::string>> replicates;
   nlohmann::json setup = nlohmann::json::object();
 };
 
@@ -153,6 +157,23 @@ Sens read_sens(const fs::path& file) {
     else fail_at(s, n, "sensitivity.dt_fraction", "expected a number > 0 (Δt = that × the guard's limit) or \"base\"");
     if (s.function) fail_at(s, n, "sensitivity.dt_fraction", "only for a case (a test function has no time step)");
   }
+  if (const toml::node* rn = st->get("replicates")) {
+    const toml::array* ra = rn->as_array();
+    if (!ra || ra->size() < 2)
+      fail_at(s, rn, "sensitivity.replicates", "expected at least 2 lists of overrides, e.g. [[\"numerics.dt=5e-5 s\"], [\"numerics.dt=4.9e-5 s\"]]");
+    if (s.function) fail_at(s, rn, "sensitivity.replicates", "only for a case (a test function has no noise)");
+    for (const auto& e : *ra) {
+      const toml::array* ea = e.as_array();
+      if (!ea) fail_at(s, &e, "sensitivity.replicates", "expected a list of \"path=value\" overrides per replicate");
+      std::vector<std::string> sets;
+      for (const auto& x : *ea) {
+        auto v = x.value_exact<std::string>();
+        if (!v || v->find('=') == std::string::npos) fail_at(s, &x, "sensitivity.replicates", "expected \"path=value\"");
+        sets.push_back(*v);
+      }
+      s.replicates.push_back(sets);
+    }
+  }
   if (const toml::table* su = (*st)["setup"].as_table())
     for (const auto& [k, v] : *su) {
       if (auto x = v.value<double>()) s.setup[std::string(k.str())] = *x;
@@ -201,6 +222,19 @@ Sens read_sens(const fs::path& file) {
       if (p.path == "numerics.dt")
         fail_at(s, st->get("dt_fraction"), "sensitivity.dt_fraction",
                 "Δt follows the guard's limit, so numerics.dt cannot also be a parameter");
+  for (const auto& sets : s.replicates)  // a replicate's override would silently undo a parameter's value
+    for (const std::string& x : sets) {
+      const std::string path = x.substr(0, x.find('='));
+      for (const Parameter& p : s.params) {
+        bool clash = p.path == path;
+        for (const auto& f : p.also) clash = clash || f.path == path;
+        if (clash)
+          fail_at(s, st->get("replicates"), "sensitivity.replicates",
+                  fmt::format("\"{}\" is set by the parameter \"{}\"; a replicate may not override it", path, p.label));
+      }
+      if (path == "numerics.dt" && (s.dt_fraction || s.dt_fraction_base))
+        fail_at(s, st->get("replicates"), "sensitivity.replicates", "Δt follows the guard's limit (dt_fraction): a replicate may not set it");
+    }
   if (s.function && sens::dimension(*s.function) != s.params.size())
     fail_at(s, pn, "parameter", fmt::format("the function {} takes {} inputs, {} parameters given", s.function->name,
                                             sens::dimension(*s.function), s.params.size()));
@@ -373,6 +407,26 @@ struct Runner {
 };
 
 
+bool run_ok(const Run& r) { return r.status != "refused" && r.status != "blow-up" && r.status != "non-finite"; }
+
+/// One sample from its replicates: the mean of every output (missing if any replicate's is), the status
+/// and message of the first replicate that failed (else the first's), the mean Δt.
+Run replicate_mean(const Run* reps, std::size_t count) {
+  Run r = reps[0];
+  for (std::size_t j = 1; j < count; ++j) {
+    const Run& x = reps[j];
+    if (run_ok(r) && !run_ok(x)) {
+      r.status = x.status;
+      r.message = fmt::format("replicate {}: {}", j + 1, x.message);
+    }
+    for (std::size_t o = 0; o < r.outputs.size(); ++o) r.outputs[o] += x.outputs[o];  // NaN stays NaN
+    r.dt += x.dt;
+  }
+  for (double& y : r.outputs) y /= static_cast<double>(count);
+  r.dt /= static_cast<double>(count);
+  return r;
+}
+
 /// The overrides that put parameter p at value v: its path and every path that follows it.
 void push_sets(std::vector<std::string>& sets, const Parameter& p, double v) {
   sets.push_back(fmt::format("{}={:.17g}{}", p.path, v, p.angle ? " rad" : ""));
@@ -451,7 +505,21 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
     for (std::size_t i = 0; i < d; ++i)
       for (const auto& row : des.ab[i]) runs.push_back(make_run(fmt::format("sobol AB{}", i + 1), row));
   }
-  runner.run_all_runs(runs, opt.jobs);
+  if (s.replicates.empty()) {
+    runner.run_all_runs(runs, opt.jobs);
+  } else {  // every sample once per replicate, then the mean per sample
+    const std::size_t nr = s.replicates.size();
+    std::vector<Run> reps;
+    reps.reserve(runs.size() * nr);
+    for (const Run& r : runs)
+      for (const auto& extra : s.replicates) {
+        Run x = r;
+        x.sets.insert(x.sets.end(), extra.begin(), extra.end());
+        reps.push_back(std::move(x));
+      }
+    runner.run_all_runs(reps, opt.jobs);
+    for (std::size_t k = 0; k < runs.size(); ++k) runs[k] = replicate_mean(&reps[k * nr], nr);
+  }
   fs::remove(out / "running.json");
 
   // The table of every run: inputs (values; blank = the base case's), outputs, status.
@@ -466,7 +534,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
   nlohmann::json run_rows = nlohmann::json::array();
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const Run& r = runs[k];
-    const bool ok = r.status != "refused" && r.status != "blow-up" && r.status != "non-finite";
+    const bool ok = run_ok(r);
     failed += !ok;
     csv << k << "," << r.method;
     nlohmann::json row = {std::to_string(k), r.method};
@@ -822,6 +890,16 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
     setup["range of " + p.label] = fmt::format("{} = {} … {} ({})", p.path.empty() ? p.label : p.path, num(p.low), num(p.high),
                                                p.log_uniform ? "log-uniform" : p.integer ? "integers, uniform" : "uniform");
   if (s.function) setup["function"] = s.function->name;
+  if (!s.replicates.empty()) {
+    std::string list;
+    for (const auto& sets : s.replicates) {
+      std::string one;
+      for (const auto& x : sets) one += (one.empty() ? "" : ", ") + x;
+      list += (list.empty() ? "" : "; ") + one;
+    }
+    setup["replicates"] = fmt::format("each run above is the mean of {} replicates ({} DEM runs in all): {}", s.replicates.size(),
+                                      runs.size() * s.replicates.size(), list);
+  }
   if (derived_dt)
     setup["time step"] = fmt::format("Δt = {:.4g} × the time-step guard's limit of each run{}", runner.dt_fraction,
                                      s.dt_fraction_base ? " (the base case's own ratio)" : "");
