@@ -36,6 +36,7 @@ std::uint32_t cell_of(double u, double lo, double inv_cell) {
 
 template <class T>
 void permute(std::vector<T>& a, const std::vector<std::uint32_t>& order, std::vector<T>& tmp) {
+  if (a.size() != order.size()) throw std::invalid_argument("permute_elements: an element array has the wrong size");
   tmp.resize(a.size());
   for (std::size_t k = 0; k < order.size(); ++k) tmp[k] = a[order[k]];
   a.swap(tmp);
