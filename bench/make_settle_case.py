@@ -10,12 +10,18 @@ sequences, no random numbers), and lifted so that every disk clears its neighbou
 contact distance: all gaps are open at the start. Under gravity the rows land one on another, slide into
 the uneven nests and settle as a disordered packing with about two contacts per disk."""
 import math
+import random
 import sys
 
 # Scaled variants for the suite (bench/suite.py): make_settle_case.py ROWS COLS STEPS; the defaults give
 # the checked-in 10^4 case byte for byte.
-ROWS, COLS, STEPS = (int(a) for a in sys.argv[1:4]) if len(sys.argv) > 3 else (50, 200, 10000)
-SCALED = len(sys.argv) > 3
+# --shuffle: the same disks at the same places, written as [[element]] tables in a random order (a fixed
+# seed: the same file every time), so that the element numbering has no relation to space -- a packing
+# generated or poured in random order (bench/README.md, "Locality").
+SHUFFLE = "--shuffle" in sys.argv[1:]
+ARGS = [a for a in sys.argv[1:] if a != "--shuffle"]
+ROWS, COLS, STEPS = (int(a) for a in ARGS[:3]) if len(ARGS) > 2 else (50, 200, 10000)
+SCALED = len(ARGS) > 2 or SHUFFLE
 R_MIN, R_MAX = 0.90e-3, 1.00e-3   # [m]
 SX = 2.04e-3                      # step along a row [m] (> 2 R_MAX: neighbours in a row never touch at start)
 GAP = 0.01                        # clearance between rows, fraction of the contact distance
@@ -52,7 +58,7 @@ print(f"""# Benchmark: a settle of 10^4 disks with linear contacts (bench/README
 # one on another, slide into their nests and settle as a disordered packing in a box of four walls.
 # bench/run.sh runs the same setup in LAMMPS and compares the speed. Plain numbers are SI units.
 [case]
-title = "{f'Settle of {ROWS * COLS} disks (benchmark, scaled)' if SCALED else 'Settle of 10^4 disks (benchmark)'}"
+title = "{f'Settle of {ROWS * COLS} disks (benchmark, scaled{", shuffled" if SHUFFLE else ""})' if SCALED else 'Settle of 10^4 disks (benchmark)'}"
 source = "bench/README.md"
 
 [physics]
@@ -91,7 +97,18 @@ from = [{a[0]!r}, {a[1]!r}]
 to = [{b[0]!r}, {b[1]!r}]
 material = "wall"
 """)
-for k in range(ROWS):
+if SHUFFLE:
+    # the positions a [[row]] generates: start + c * step (the same floating-point operations)
+    disks = [(radii[k], xs[k] + c * SX, ys[k] + c * 0.0) for k in range(ROWS) for c in range(COLS)]
+    random.Random(20261122).shuffle(disks)
+    print(f"# {len(disks)} disks in random order (make_settle_case.py --shuffle)")
+    for r, x, y in disks:
+        print(f"""[[element]]
+material = "grain"
+radius = {r!r}
+position = [{x!r}, {y!r}]
+""")
+for k in range(0 if SHUFFLE else ROWS):
     print(f"""[[row]]
 material = "grain"
 radius = {radii[k]!r}
@@ -102,7 +119,7 @@ count = {COLS}
 print(f"""[numerics]
 integrator = "K18"
 dt = 4.0e-6                # s, about a third of the stability limit (dem2d check)
-{f'duration = {STEPS * 4.0e-6!r}' if SCALED else 'duration = 0.04            # s: 10^4 steps: the rows collapse, land (about 20 ms), rebound and settle'}
+{f'duration = {STEPS * 4.0e-6!r}' if len(ARGS) > 2 else 'duration = 0.04            # s: 10^4 steps: the rows collapse, land (about 20 ms), rebound and settle'}
 # skin: the default, a quarter of the smallest radius (0.225 mm)
 
 [output]

@@ -10,6 +10,8 @@ Cases (written into the output folder):
           pair_style gran/hooke/history on one process (bench/lammps_input.py);
   pre     bench/make_pre_lattice_case.py: a bonded 100 x 100 PRE lattice, faces of N = 1 ... 5 segments,
           2000 steps, dem2d on 1 thread (LAMMPS has no such element);
+  shuffled the 10^4 settle with its disks numbered at random (make_settle_case.py --shuffle), reordering off
+          and on (numerics.reorder_every = 10), dem2d on 1 thread (bench/README.md, "Locality");
   silo    a silo discharge of about 3x10^4 disks: runs cases/silo/discharge_30k.toml once it exists (hook).
 --quick: fewer steps (a smoke run of the whole suite in about a minute; the ratios are noisier).
 
@@ -41,6 +43,8 @@ SETTLE = [  # (label, rows, cols, steps, quick steps)
     ("1e5", 200, 500, 4000, 500),
 ]
 SETTLE_BIG = ("1e6", 500, 2000, 1000, 100)
+SHUFFLED = (50, 200, 10000, 2000)  # the 10^4 settle numbered at random (make_settle_case.py --shuffle): locality
+REORDER_EVERY = 10                 # numerics.reorder_every of its reordered run
 PRE = (100, 100, 2000, 400)  # rows, cols, steps, quick steps
 SILO_CASE = ROOT / "cases/silo/discharge_30k.toml"  # hook: run once the silo discharge case exists
 
@@ -198,6 +202,14 @@ def main():
                                             str(cols), str(quick if a.quick else steps), str(n)],
                                            check=True, stdout=subprocess.PIPE, text=True).stdout)
             cases.append(("pre", f"N{n}", case, None))
+    # locality (bench/README.md): the 10^4 settle with its disks numbered at random, reordering off and on
+    rows, cols, steps, quick = SHUFFLED
+    text = subprocess.run([sys.executable, str(ROOT / "bench/make_settle_case.py"), str(rows), str(cols),
+                           str(quick if a.quick else steps), "--shuffle"], check=True, stdout=subprocess.PIPE, text=True).stdout
+    for every in (0, REORDER_EVERY):
+        case = out / f"shuffled_reorder{every}.toml"
+        case.write_text(text.replace('integrator = "K18"\n', f'integrator = "K18"\nreorder_every = {every}\n', 1))
+        cases.append(("shuffled", f"reorder_every={every}", case, None))
     if SILO_CASE.exists():
         cases.append(("silo", "3e4", SILO_CASE, None))
 
@@ -276,6 +288,8 @@ def main():
                 g, g1 = B.get(f"pre N{n} {bl} 1T"), B.get(f"pre N1 {bl} 1T")
                 row.append(f"{g1['rate'] / g['rate']:.2f}" if g and g1 else "-")
             lines.append("| " + " | ".join(row) + " |")
+    for k in sorted(k for k in B if k.startswith("shuffled ")):
+        lines.append(f"\n10^4 settle, disks numbered at random ({k}): {B[k]['rate'] / 1e6:.2f} M disk-steps/s")
     silo = [k for k in B if k.startswith("silo ")]
     for k in silo:
         lines.append(f"\nsilo discharge ({k}): {B[k]['rate'] / 1e6:.2f} M element-steps/s")

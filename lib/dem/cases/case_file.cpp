@@ -698,6 +698,13 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     rd.non_negative(r, "energy_limit", n.energy_limit);
     n.max_step_fraction = r.number("max_step_fraction", 0.25);
     rd.positive(r, "max_step_fraction", n.max_step_fraction);
+    // spatial reordering every this many neighbour-list rebuilds (core/spatial_order.hpp); 0: never
+    n.reorder_every = r.integer("reorder_every", 0, std::int64_t{1} << 40, 0);
+    if (n.reorder_every > 0)
+      for (const PairLaw& law : m.laws)
+        if (law.kind == LawKind::face)
+          r.fail("reorder_every", "spatial reordering needs linear contact laws only (this case has a face law); "
+                                  "expected 0 or no reorder_every");
     // the step count must be a number an int64 (and a double, exactly) holds
     const double steps = std::ceil(n.duration / n.dt - 1e-9);
     if (!(steps <= 9.007199254740992e15))

@@ -59,7 +59,8 @@ std::optional<std::size_t> keystone(const Model& m) {
     const double s = len2 > 0.0 ? dot(c - w.a, ab) / len2 : 0.0;
     if (s < 0.0 || s > 1.0) continue;  // not over the slit
     const double d2 = dot(c - mid, c - mid);
-    if (!best || d2 < best_d2) best = i, best_d2 = d2;
+    // ties: the lower id (the case's numbering, whatever order the run keeps the elements in)
+    if (!best || d2 < best_d2 || (d2 == best_d2 && !e.id.empty() && e.id[i] < e.id[*best])) best = i, best_d2 = d2;
   }
   return best;
 }

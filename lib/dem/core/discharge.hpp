@@ -36,7 +36,7 @@ Discharged discharged(const Model& m);
 
 /// The keystone of a stalled arch: among the active elements whose centre lies over the slit (its
 /// projection on the slit falls between the slit's ends) and above the outlet line, the one nearest
-/// the slit's mid-point (ties: the lower index). None if no element is over the slit.
+/// the slit's mid-point (ties: the lower id, Elements::id). None if no element is over the slit.
 std::optional<std::size_t> keystone(const Model& m);
 
 }  // namespace dem

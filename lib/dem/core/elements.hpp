@@ -25,6 +25,10 @@ struct Elements {
   std::vector<Motion> motion;
   std::vector<std::int32_t> drive;     // index into the velocity histories for driven elements, else -1
   std::vector<std::uint8_t> active;    // 0 once removed from the run (e.g. discharged from a silo)
+  // identity
+  std::vector<std::uint32_t> id;       // the element's number in the case (what outputs, probes and the
+                                       // user see); its index changes when the run reorders the
+                                       // elements in space (spatial_order.hpp), its id never does
 
   std::size_t size() const { return x.size(); }
 };

@@ -48,6 +48,7 @@ std::size_t add_element(Model& m, Shape shape, std::int32_t material, double rad
   e.motion.push_back(Motion::free);
   e.drive.push_back(-1);
   e.active.push_back(1);
+  e.id.push_back(static_cast<std::uint32_t>(e.size() - 1));
   return e.size() - 1;
 }
 

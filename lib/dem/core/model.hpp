@@ -61,6 +61,8 @@ struct Numerics {
   bool allow_unstable = false;  // run even above the stability limit (for stability studies)
   double energy_limit = 0.0;    // stop when the total energy exceeds this [J] (0: automatic)
   double max_step_fraction = 0.25;  // blow-up: no element may move more than this × its radius in one step
+  std::int64_t reorder_every = 0;   // reorder the elements in space every this many neighbour-list
+                                    // rebuilds (spatial_order.hpp; 0: never, the default; linear laws only)
 };
 
 /// A static preload: before the first step the element is moved rigidly (rotated by `rotation` about

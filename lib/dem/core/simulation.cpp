@@ -146,7 +146,7 @@ void Simulation::apply_preloads() {
   std::fill(e.dy.begin(), e.dy.end(), 0.0);
   std::fill(e.dphi.begin(), e.dphi.end(), 0.0);
   for (const Preload& p : m_.preloads) {
-    const std::size_t i = p.element;
+    const std::size_t i = index_of(p.element);  // the case's numbering (the elements may be reordered)
     const Vec2 c{e.x[i], e.y[i]}, d = c - p.about;
     const double cs = std::cos(p.rotation), sn = std::sin(p.rotation);
     const Vec2 moved = p.about + Vec2{cs * d.x - sn * d.y, sn * d.x + cs * d.y};
@@ -201,6 +201,7 @@ bool Simulation::needs_rebuild() const {
 }
 
 void Simulation::rebuild() {
+  if (m_.numerics.reorder_every > 0 && rebuilds_ % m_.numerics.reorder_every == 0) reorder_elements();
   ++rebuilds_;
   const Elements& e = m_.elements;
   search_.build(e, skin_, candidates_);

@@ -10,6 +10,7 @@
 #include "dem/core/contact_index.hpp"
 #include "dem/core/model.hpp"
 #include "dem/core/neighbour_search.hpp"
+#include "dem/core/spatial_order.hpp"
 #include "dem/core/stability.hpp"
 
 namespace dem {
@@ -94,6 +95,17 @@ class Simulation {
   int threads() const { return threads_; }
   int threads_used() const;  // what a step uses: threads() limited by min_per_thread
 
+  /// Element ids (Elements::id, what outputs show) and indices (where the element sits in the arrays now):
+  /// equal unless numerics.reorder_every renumbered the elements in space (spatial_order.hpp).
+  std::uint32_t index_of(std::uint32_t id) const { return index_of_id_.empty() ? id : index_of_id_[id]; }
+  std::uint32_t id_of(std::size_t index) const {
+    return m_.elements.id.empty() ? static_cast<std::uint32_t>(index) : m_.elements.id[index];
+  }
+  bool reordered() const { return !index_of_id_.empty(); }
+  /// Brings the elements into the order of `ids` (ids[k]: the id of the element at index k), e.g. a
+  /// checkpoint's; the contact slots follow. Throws std::invalid_argument unless ids is a permutation.
+  void restore_order(const std::vector<std::uint32_t>& ids);
+
  private:
   friend struct SimulationAccess;  // checkpoints (run/checkpoint.cpp) save and restore the whole state
   void rebuild();
@@ -138,6 +150,12 @@ class Simulation {
   std::int64_t rebuilds_ = 0;
   BasePlateTravel plate_travel_;
   bool preloading_ = false;  // the static zeroth step of apply_preloads()
+  // Spatial reordering (spatial_order.cpp): at a rebuild every numerics.reorder_every rebuilds.
+  void reorder_elements();
+  void apply_order();  // order_ → elements, slots, candidates, index_of_id_
+  std::vector<std::uint32_t> order_, new_of_old_, index_of_id_;  // index_of_id_ empty: ids = indices
+  std::vector<std::uint64_t> order_keys_;
+  PermuteScratch permute_scratch_;
 };
 
 }  // namespace dem

@@ -22,7 +22,7 @@ static_assert(sizeof(SegmentState) == 32 && sizeof(FaceConstants) == 48 && sizeo
                   sizeof(FaceHistory) == 24 + 32 * kMaxSegments &&
                   sizeof(FaceSlot) == 16 + 48 + sizeof(FaceHistory) + 32 + 16,
               "FaceSlot changed: add the new field to the checkpoint (checkpoint.cpp)");
-static_assert(sizeof(Elements) == 23 * sizeof(std::vector<double>),
+static_assert(sizeof(Elements) == 24 * sizeof(std::vector<double>),
               "Elements changed: add the new field to the checkpoint (checkpoint.cpp)");
 static_assert(sizeof(Wall) == sizeof(std::string) + 80, "Wall changed: add the new field to the checkpoint (checkpoint.cpp)");
 
@@ -132,6 +132,10 @@ struct SimulationAccess {
     Writer w;
     const Elements& e = sim.m_.elements;
     w.put<std::uint64_t>(e.size());
+    // the order of the elements (spatial_order.hpp): the id of the element at each index
+    std::vector<std::uint32_t> ids(e.size());
+    for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = sim.id_of(k);
+    w.put_vec(ids);
     for (const auto* v : {&e.x, &e.y, &e.phi, &e.dx, &e.dy, &e.dphi, &e.vx, &e.vy, &e.omega, &e.fx, &e.fy, &e.moment})
       w.put_vec(*v);
     w.put_vec(e.active);
@@ -155,6 +159,15 @@ struct SimulationAccess {
     const auto n = r.get<std::uint64_t>();
     if (n != e.size())
       throw CaseError(fmt::format("restart: the checkpoint has {} elements, the case {}", n, e.size()));
+    {  // the elements take the checkpoint's order first (their properties come from the case)
+      std::vector<std::uint32_t> ids;
+      r.get_vec(ids);
+      try {
+        sim.restore_order(ids);
+      } catch (const std::invalid_argument& x) {
+        throw OutputError(fmt::format("{}: corrupt checkpoint ({})", ck.case_path, x.what()));
+      }
+    }
     for (auto* v : {&e.x, &e.y, &e.phi, &e.dx, &e.dy, &e.dphi, &e.vx, &e.vy, &e.omega, &e.fx, &e.fy, &e.moment}) {
       r.get_vec(*v);
       if (v->size() != n) throw OutputError(fmt::format("{}: corrupt checkpoint (element arrays)", ck.case_path));
@@ -190,8 +203,8 @@ struct SimulationAccess {
         const std::int32_t mj = wall ? m.walls[s.j].material : e.material[s.j];
         const std::int32_t law = m.law_index(e.material[s.i], mj);
         if (law < 0 || m.laws[static_cast<std::size_t>(law)].kind != kind)
-          throw CaseError(fmt::format("restart: element {} and {} {}: the new case has no {} contact law for this pair", s.i,
-                                      wall ? "wall" : "element", s.j, kind == LawKind::linear ? "linear" : "face"));
+          throw CaseError(fmt::format("restart: element {} and {} {}: the new case has no {} contact law for this pair", sim.id_of(s.i),
+                                      wall ? "wall" : "element", wall ? s.j : sim.id_of(s.j), kind == LawKind::linear ? "linear" : "face"));
         s.law = law;
       }
     };

@@ -22,7 +22,7 @@
 
 namespace dem {
 
-inline constexpr std::uint32_t kCheckpointVersion = 2;  // 2: the run loop's discharge state
+inline constexpr std::uint32_t kCheckpointVersion = 3;  // 2: the run loop's discharge state; 3: element ids (order)
 
 struct Checkpoint {
   std::string case_hash, case_path;

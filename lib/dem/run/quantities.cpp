@@ -31,15 +31,15 @@ long wall_ref(const std::string& s, const Model& m) {
 /// (M23, M24): slide of the lower corner of element u down a slope inclined at α,
 /// δ = (x_c0 − x_c) cos α + (y_c0 − y_c) sin α, with the corner at x + √2 r cos(5π/4 + φ) (φ = α + θ is
 /// the element's absolute rotation: the corner (−1, −1) of its square) and x_c0, y_c0 its start.
-QuantityFn corner_slide(std::size_t u, double alpha, const Model& m) {
-  auto corner = [u](const Elements& e) {
+QuantityFn corner_slide(std::size_t id, double alpha, const Model& m) {
+  auto corner = [](const Elements& e, std::size_t u) {
     const double a = 1.25 * std::numbers::pi + e.phi[u], d = std::sqrt(2.0) * e.radius[u];
     return Vec2{e.x[u] + d * std::cos(a), e.y[u] + d * std::sin(a)};
   };
-  const Vec2 c0 = corner(m.elements);
+  const Vec2 c0 = corner(m.elements, index_of_id(m.elements, static_cast<std::uint32_t>(id)));
   const double ca = std::cos(alpha), sa = std::sin(alpha);
-  return [u, c0, ca, sa, corner](const Simulation& s) {
-    const Vec2 c = corner(s.model().elements);
+  return [id, c0, ca, sa, corner](const Simulation& s) {
+    const Vec2 c = corner(s.model().elements, s.index_of(static_cast<std::uint32_t>(id)));
     return (c0.x - c.x) * ca + (c0.y - c.y) * sa;
   };
 }
@@ -174,15 +174,15 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
     const auto u = static_cast<std::size_t>(i);
     if (p.size() == 2) {
       const std::string& f = p[1];
-      if (f == "x") return [u](const Simulation& s) { return s.model().elements.x[u]; };
-      if (f == "y") return [u](const Simulation& s) { return s.model().elements.y[u]; };
-      if (f == "phi") return [u](const Simulation& s) { return s.model().elements.phi[u]; };
-      if (f == "vx") return [u](const Simulation& s) { return s.model().elements.vx[u]; };
-      if (f == "vy") return [u](const Simulation& s) { return s.model().elements.vy[u]; };
-      if (f == "omega") return [u](const Simulation& s) { return s.model().elements.omega[u]; };
-      if (f == "fx") return [u](const Simulation& s) { return s.model().elements.fx[u]; };
-      if (f == "fy") return [u](const Simulation& s) { return s.model().elements.fy[u]; };
-      if (f == "moment") return [u](const Simulation& s) { return s.model().elements.moment[u]; };
+      if (f == "x") return [u](const Simulation& s) { return s.model().elements.x[s.index_of(u)]; };
+      if (f == "y") return [u](const Simulation& s) { return s.model().elements.y[s.index_of(u)]; };
+      if (f == "phi") return [u](const Simulation& s) { return s.model().elements.phi[s.index_of(u)]; };
+      if (f == "vx") return [u](const Simulation& s) { return s.model().elements.vx[s.index_of(u)]; };
+      if (f == "vy") return [u](const Simulation& s) { return s.model().elements.vy[s.index_of(u)]; };
+      if (f == "omega") return [u](const Simulation& s) { return s.model().elements.omega[s.index_of(u)]; };
+      if (f == "fx") return [u](const Simulation& s) { return s.model().elements.fx[s.index_of(u)]; };
+      if (f == "fy") return [u](const Simulation& s) { return s.model().elements.fy[s.index_of(u)]; };
+      if (f == "moment") return [u](const Simulation& s) { return s.model().elements.moment[s.index_of(u)]; };
       // px(a,b), py(a,b): a body point at the offset (a r, b r) in the element's own frame, e.g. the
       // corner (1,-1) of a PRE's square
       if ((f.rfind("px(", 0) == 0 || f.rfind("py(", 0) == 0) && f.back() == ')') {
@@ -196,8 +196,9 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
           throw bad("expected numbers in px(a,b) / py(a,b)");
         }
         const bool want_x = f[1] == 'x';
-        return [u, a, b, want_x](const Simulation& s) {
+        return [id = u, a, b, want_x](const Simulation& s) {
           const Elements& e = s.model().elements;
+          const std::size_t u = s.index_of(id);
           const double c = std::cos(e.phi[u]), sn = std::sin(e.phi[u]), r = e.radius[u];
           return want_x ? e.x[u] + r * (c * a - sn * b) : e.y[u] + r * (sn * a + c * b);
         };
@@ -216,19 +217,21 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
       const bool wall = j < 0;
       const auto o = static_cast<std::uint32_t>(wall ? w : j);
       if (p[1] == "gap")
-        return [u, o, wall](const Simulation& s) {
+        return [id = u, other = o, wall](const Simulation& s) {
           const Elements& e = s.model().elements;
+          const std::size_t u = s.index_of(id);
+          const std::uint32_t o = wall ? other : s.index_of(other);
           const Vec2 c{e.x[u], e.y[u]};
           if (wall) return norm(closest_point(s.model().walls[o], c) - c) - e.radius[u];
           return std::hypot(e.x[o] - e.x[u], e.y[o] - e.y[u]) - e.radius[u] - e.radius[o];
         };
       if (p[1] == "links")
         return [u, o, wall](const Simulation& s) {
-          return static_cast<double>(s.contact(static_cast<std::uint32_t>(u), o, wall).links);
+          return static_cast<double>(s.contact(s.index_of(static_cast<std::uint32_t>(u)), wall ? o : s.index_of(o), wall).links);
         };
       const bool normal = p[1] == "fn";
       return [u, o, wall, normal](const Simulation& s) {
-        const ContactView c = s.contact(static_cast<std::uint32_t>(u), o, wall);
+        const ContactView c = s.contact(s.index_of(static_cast<std::uint32_t>(u)), wall ? o : s.index_of(o), wall);
         return normal ? c.fn : c.fs;
       };
     }

@@ -138,6 +138,7 @@ nlohmann::json resolved_case_si(const Case& c) {
                    {"allow_unstable", n.allow_unstable},
                    {"energy_limit", n.energy_limit},
                    {"max_step_fraction", n.max_step_fraction}};
+  if (n.reorder_every > 0) j["numerics"]["reorder_every"] = n.reorder_every;  // (absent: 0, never)
   nlohmann::json mats = nlohmann::json::array();
   for (const Material& mt : m.materials) mats.push_back({{"name", mt.name}, {"density", mt.density}});
   j["materials"] = mats;

@@ -77,7 +77,10 @@ struct ProbeState {
   bool in_contact = false;
 };
 
+// i, j: element ids (the case's numbering), mapped to the arrays' indices here (spatial_order.hpp)
 Vec2 contact_normal(const Simulation& s, std::uint32_t i, std::uint32_t j, bool wall) {
+  i = s.index_of(i);
+  if (!wall) j = s.index_of(j);
   const Elements& e = s.model().elements;
   const Vec2 c{e.x[i], e.y[i]};
   const Vec2 o = wall ? closest_point(s.model().walls[j], c) : Vec2{e.x[j], e.y[j]};
@@ -91,13 +94,15 @@ Vec2 body_velocity(const Simulation& s, std::uint32_t j, bool wall) {
     const Wall& w = m.walls[j];
     return w.drive >= 0 ? m.drives[static_cast<std::size_t>(w.drive)].at(s.time()) : Vec2{};
   }
+  j = s.index_of(j);
   return {m.elements.vx[j], m.elements.vy[j]};
 }
 
 /// Normal relative velocity of i towards j (or wall j) along n, approach positive.
 double approach_velocity(const Simulation& s, std::uint32_t i, std::uint32_t j, bool wall, Vec2 n) {
   const Elements& e = s.model().elements;
-  const Vec2 vi{e.vx[i], e.vy[i]};
+  const std::uint32_t ii = s.index_of(i);
+  const Vec2 vi{e.vx[ii], e.vy[ii]};
   return dot(vi - body_velocity(s, j, wall), n);
 }
 
@@ -282,7 +287,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       s.q = compile_quantity(p.quantity, m);
       s.prev_v = s.q(sim);
     } else {
-      s.n_prev = contact_normal(sim, p.element, p.other, p.other_is_wall);
+      s.n_prev = contact_normal(sim, p.element, p.other, p.other_is_wall);  // ids (the case's numbering)
       s.vn_prev = approach_velocity(sim, p.element, p.other, p.other_is_wall, s.n_prev);
     }
     probes.push_back(s);
@@ -457,7 +462,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
             "stopped at t = {:.6g} s (step {}): element {} moved {:.4g} m in one step, {:.4g} of its radius "
             "(numerics.max_step_fraction = {:.3g}: contacts would be missed) (the stability limit of this assembly "
             "is {:.6g} s, dt = {:.6g} s)",
-            sim.time(), sim.steps(), worst, std::hypot(e.dx[worst], e.dy[worst]), std::sqrt(worst2),
+            sim.time(), sim.steps(), sim.id_of(worst), std::hypot(e.dx[worst], e.dy[worst]), std::sqrt(worst2),
             m.numerics.max_step_fraction, limit, m.numerics.dt);
         break;
       }
@@ -473,7 +478,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
         if (const auto k = keystone(mm)) {
           mm.elements.active[*k] = 0;
           loop.last_release = sim.time();
-          loop.keystones.push_back({sim.time(), static_cast<double>(*k), mm.elements.x[*k], mm.elements.y[*k]});
+          loop.keystones.push_back({sim.time(), static_cast<double>(sim.id_of(*k)), mm.elements.x[*k], mm.elements.y[*k]});
         }
       }
     }
@@ -533,7 +538,8 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
           p.prev_v = p.q(sim);
         }
       } else {
-        const ContactView cv = sim.contact(s.element, s.other, s.other_is_wall);
+        const ContactView cv = sim.contact(sim.index_of(s.element), s.other_is_wall ? s.other : sim.index_of(s.other),
+                                           s.other_is_wall);
         p.in_contact = cv.fn != 0.0;
         if (p.in_contact) ++p.force_steps;
         if (s.kind == ProbeKind::restitution) {
@@ -708,7 +714,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
     double keystone_mass = 0.0;
     for (const LoopState::Keystone& k : loop.keystones) {
       ks.push_back({{"time", k.t}, {"element", static_cast<std::int64_t>(k.element)}, {"x", k.x}, {"y", k.y}});
-      keystone_mass += m.elements.mass[static_cast<std::size_t>(k.element)];
+      keystone_mass += m.elements.mass[sim.index_of(static_cast<std::uint32_t>(k.element))];  // k.element: an id
     }
     double remaining_mass = 0.0;
     for (std::size_t i = 0; i < m.elements.size(); ++i)

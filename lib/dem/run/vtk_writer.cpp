@@ -1,5 +1,7 @@
 #include "dem/run/vtk_writer.hpp"
 
+#include "dem/core/spatial_order.hpp"
+
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -55,10 +57,10 @@ struct Appended {
 void write_vtp(const std::filesystem::path& file, const Simulation& sim) {
   const Elements& e = sim.model().elements;
   const std::vector<Wall>& walls = sim.model().walls;
-  const auto contacts = sim.contacts();
-  std::vector<std::size_t> ids, pres;  // active elements; active PREs
-  for (std::size_t i = 0; i < e.size(); ++i)
-    if (e.active[i]) {
+  const auto contacts = contacts_in_id_order(sim);  // as without spatial reordering (spatial_order.hpp)
+  std::vector<std::size_t> ids, pres;  // active elements; active PREs (indices, in the order of their ids)
+  for (std::size_t id = 0; id < e.size(); ++id)
+    if (const std::size_t i = sim.index_of(static_cast<std::uint32_t>(id)); e.active[i]) {
       ids.push_back(i);
       if (e.shape[i] == Shape::pre) pres.push_back(i);
     }
@@ -83,7 +85,7 @@ void write_vtp(const std::filesystem::path& file, const Simulation& sim) {
     velocity.insert(velocity.end(), {centre ? e.vx[i] : 0.0, centre ? e.vy[i] : 0.0, 0.0});
     force.insert(force.end(), {centre ? e.fx[i] : 0.0, centre ? e.fy[i] : 0.0, 0.0});
     moment.push_back(centre ? e.moment[i] : 0.0);
-    point_element.push_back(el);
+    point_element.push_back(el >= 0 ? static_cast<std::int64_t>(sim.id_of(i)) : el);  // ids, not indices
   };
   for (std::size_t i : ids) point(e.x[i], e.y[i], static_cast<std::int64_t>(i), true);
   const std::size_t corner0 = ids.size();
@@ -118,7 +120,8 @@ void write_vtp(const std::filesystem::path& file, const Simulation& sim) {
   std::vector<double> fn, fs, cell_force;
   auto cell = [&](int k, std::int64_t el, std::int64_t other, std::int64_t wall, double n, double s, double fx, double fy,
                   int l) {
-    kind.push_back(k), cell_element.push_back(el), cell_other.push_back(other), cell_wall.push_back(wall);
+    auto id = [&](std::int64_t i) { return i >= 0 ? static_cast<std::int64_t>(sim.id_of(static_cast<std::size_t>(i))) : i; };
+    kind.push_back(k), cell_element.push_back(id(el)), cell_other.push_back(id(other)), cell_wall.push_back(wall);
     fn.push_back(n), fs.push_back(s), cell_force.insert(cell_force.end(), {fx, fy, 0.0}), links.push_back(l);
   };
   for (std::size_t k = 0; k < ids.size(); ++k) {

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "dem/core/spatial_order.hpp"
 #include "dem/run/output_files.hpp"
 #include "dem/run/picture/png.hpp"
 
@@ -68,7 +69,7 @@ ForcePicture draw_force_network(const Simulation& sim, const PictureOptions& o) 
   double r_min = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < e.size(); ++i)
     if (e.active[i]) r_min = std::min(r_min, e.radius[i]);
-  const auto contacts = sim.contacts();
+  const auto contacts = contacts_in_id_order(sim);  // drawn in the same order with spatial reordering
   double fmax = 0.0;
   for (const auto& c : contacts)
     if (e.active[c.i] && (c.wall || e.active[c.j])) fmax = std::max(fmax, std::abs(c.fn));
@@ -81,8 +82,9 @@ ForcePicture draw_force_network(const Simulation& sim, const PictureOptions& o) 
   f.legend_height = 2 * line_h + sample_h + 4 * s;
   ForcePicture pic{Canvas(f.width, f.scene_height + f.legend_height, kBackground), f, max_force, max_line};
   Canvas& cv = pic.canvas;
-  // Elements.
-  for (std::size_t i = 0; i < e.size(); ++i) {
+  // Elements, in the order of their ids (spatial_order.hpp).
+  for (std::size_t id = 0; id < e.size(); ++id) {
+    const std::size_t i = sim.index_of(static_cast<std::uint32_t>(id));
     if (!e.active[i]) continue;
     const Vec2 c = f.to_px({e.x[i], e.y[i]});
     const double r = e.radius[i] * f.scale;
