@@ -10,7 +10,9 @@ Cases (written into the output folder):
           pair_style gran/hooke/history on one process (bench/lammps_input.py);
   pre     bench/make_pre_lattice_case.py: a bonded 100 x 100 PRE lattice, faces of N = 1 ... 5 segments,
           2000 steps, dem2d on 1 thread (LAMMPS has no such element);
-  silo    a silo discharge of about 3x10^4 disks: runs cases/silo/discharge_30k.toml once it exists (hook).
+  silo    the silo discharge of 3x10^4 disks, cases/silo/discharge_30k.toml (bench/make_silo_case.py; --quick:
+          8000 steps), dem2d on 1 thread and LAMMPS (bench/lammps_input.py: region walls for the floor and
+          the gate); its rate counts the disks at the start (both codes lose disks through the slit).
 --quick: fewer steps (a smoke run of the whole suite in about a minute; the ratios are noisier).
 
 Every run repeats --reps times (default 3), all codes interleaved; the best run of each counts (other load
@@ -42,7 +44,8 @@ SETTLE = [  # (label, rows, cols, steps, quick steps)
 ]
 SETTLE_BIG = ("1e6", 500, 2000, 1000, 100)
 PRE = (100, 100, 2000, 400)  # rows, cols, steps, quick steps
-SILO_CASE = ROOT / "cases/silo/discharge_30k.toml"  # hook: run once the silo discharge case exists
+SILO_CASE = ROOT / "cases/silo/discharge_30k.toml"  # bench/make_silo_case.py's output
+SILO_QUICK = (150, 200, 8000)  # --quick: the same silo, 8000 steps (the gate opens after 6000)
 
 
 def cpu_model():
@@ -78,20 +81,26 @@ def run_dem2d(binary, case, out, threads, threads_ok):
         return None
     mem = timed(cmd)
     s = json.load(open(out / "summary.json"))
+    n0 = s["resolved_case"]["elements"]["count"]  # at the start (a discharge removes disks)
     return {"rate": s["element_steps_per_second"], "memory": mem, "elements": s["elements"], "steps": s["steps"],
-            "contacts": s["contacts"]}
+            "contacts": s["contacts"], "elements0": n0, "rate0": n0 * s["steps"] / s["wall_seconds"],
+            "discharged": s.get("discharge", {}).get("count")}
 
 
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 
 
-def run_lammps(lmp, folder, rep):
+def run_lammps(lmp, folder, rep, script="in.settle"):
+    """One LAMMPS run; a script of several `run`s (the silo: before and after the gate opens) sums their Loop
+    times; rate0 counts the atoms of the first part (the start), rate those at the end."""
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    mem = timed([lmp, "-in", "in.settle", "-log", f"log.{rep}", "-screen", "none", "-nocite"], cwd=folder, env=env)
-    m = LOOP.search((folder / f"log.{rep}").read_text())
-    secs, procs, steps, atoms = float(m[1]), int(m[2]), int(m[3]), int(m[4])
-    assert procs == 1
-    return {"rate": steps * atoms / secs, "memory": mem, "elements": atoms, "steps": steps}
+    mem = timed([lmp, "-in", script, "-log", f"log.{rep}", "-screen", "none", "-nocite"], cwd=folder, env=env)
+    loops = LOOP.findall((folder / f"log.{rep}").read_text())
+    assert loops and all(int(m[1]) == 1 for m in loops)
+    secs, steps = sum(float(m[0]) for m in loops), sum(int(m[2]) for m in loops)
+    atoms0, atoms = int(loops[0][3]), int(loops[-1][3])
+    return {"rate": steps * atoms / secs, "memory": mem, "elements": atoms, "steps": steps, "elements0": atoms0,
+            "rate0": steps * atoms0 / secs, "discharged": atoms0 - atoms}
 
 
 def best(runs):
@@ -199,7 +208,17 @@ def main():
                                            check=True, stdout=subprocess.PIPE, text=True).stdout)
             cases.append(("pre", f"N{n}", case, None))
     if SILO_CASE.exists():
-        cases.append(("silo", "3e4", SILO_CASE, None))
+        case = SILO_CASE
+        if a.quick:
+            case = out / "silo_quick.toml"
+            case.write_text(subprocess.run([sys.executable, str(ROOT / "bench/make_silo_case.py")] +
+                                           [str(v) for v in SILO_QUICK], check=True, stdout=subprocess.PIPE,
+                                           text=True).stdout)
+        lf = out / "lammps_silo"
+        if lmp:
+            subprocess.run([sys.executable, str(ROOT / "bench/lammps_input.py"), str(case), str(lf)], check=True,
+                           stdout=subprocess.DEVNULL)
+        cases.append(("silo", "3e4", case, lf))
 
     runs = {}  # (kind, label, code) -> [run]
     for rep in range(1, a.reps + 1):
@@ -210,6 +229,8 @@ def main():
                     runs.setdefault((kind, label, f"{blabel} {th}T"), []).append(r)
             if kind == "settle" and lmp:
                 runs.setdefault((kind, label, "LAMMPS"), []).append(run_lammps(lmp, lf, rep))
+            if kind == "silo" and lmp:
+                runs.setdefault((kind, label, "LAMMPS"), []).append(run_lammps(lmp, lf, rep, "in.silo"))
             print(f"rep {rep}: {kind} {label} done", file=sys.stderr, flush=True)
 
     res = {"cpu": cpu_model(), "cores": os.cpu_count(), "load_average": os.getloadavg(), "reps": a.reps,
@@ -276,9 +297,16 @@ def main():
                 g, g1 = B.get(f"pre N{n} {bl} 1T"), B.get(f"pre N1 {bl} 1T")
                 row.append(f"{g1['rate'] / g['rate']:.2f}" if g and g1 else "-")
             lines.append("| " + " | ".join(row) + " |")
-    silo = [k for k in B if k.startswith("silo ")]
-    for k in silo:
-        lines.append(f"\nsilo discharge ({k}): {B[k]['rate'] / 1e6:.2f} M element-steps/s")
+    silo = {k[len("silo 3e4 "):]: B[k] for k in B if k.startswith("silo ")}
+    if silo:
+        lines += ["", "| silo discharge, 3x10^4 disks | M disk-steps/s (disks at the start) | / LAMMPS | "
+                  "peak memory [B/disk] | / LAMMPS memory | disks out |", "|---|---|---|---|---|---|"]
+        lam = silo.get("LAMMPS")
+        for code, g in silo.items():
+            lines.append(f"| {code} | {g['rate0'] / 1e6:.2f} | "
+                         f"{g['rate0'] / lam['rate0']:.2f} | " if lam else f"| {code} | {g['rate0'] / 1e6:.2f} | - | ")
+            lines[-1] += (f"{g['memory'] / g['elements0']:.0f} | "
+                          f"{(g['memory'] / lam['memory']) if lam else float('nan'):.2f} | {g['discharged']} |")
     table = "\n".join(lines) + "\n"
     (out / "table.md").write_text(table)
     json.dump(res, open(out / "results.json", "w"), indent=2)

@@ -836,6 +836,7 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
   std::ostringstream os;
   os << toml::json_formatter{root};
   c.resolved = nlohmann::json::parse(os.str());
+  c.model.elements.shrink_to_fit();  // the generators grew the arrays element by element
   return c;
 }
 
