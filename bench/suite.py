@@ -84,7 +84,7 @@ def run_dem2d(binary, case, out, threads, threads_ok):
     n0 = s["resolved_case"]["elements"]["count"]  # at the start (a discharge removes disks)
     return {"rate": s["element_steps_per_second"], "memory": mem, "elements": s["elements"], "steps": s["steps"],
             "contacts": s["contacts"], "elements0": n0, "rate0": n0 * s["steps"] / s["wall_seconds"],
-            "discharged": s.get("discharge", {}).get("count")}
+            "discharged": s.get("discharge", {}).get("discharged")}
 
 
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
@@ -303,10 +303,10 @@ def main():
                   "peak memory [B/disk] | / LAMMPS memory | disks out |", "|---|---|---|---|---|---|"]
         lam = silo.get("LAMMPS")
         for code, g in silo.items():
-            lines.append(f"| {code} | {g['rate0'] / 1e6:.2f} | "
-                         f"{g['rate0'] / lam['rate0']:.2f} | " if lam else f"| {code} | {g['rate0'] / 1e6:.2f} | - | ")
-            lines[-1] += (f"{g['memory'] / g['elements0']:.0f} | "
-                          f"{(g['memory'] / lam['memory']) if lam else float('nan'):.2f} | {g['discharged']} |")
+            ratio = f"{g['rate0'] / lam['rate0']:.2f}" if lam else "-"
+            mem = f"{g['memory'] / lam['memory']:.2f}" if lam else "-"
+            lines.append(f"| {code} | {g['rate0'] / 1e6:.2f} | {ratio} | {g['memory'] / g['elements0']:.0f} | {mem} | "
+                         f"{g['discharged']} |")
     table = "\n".join(lines) + "\n"
     (out / "table.md").write_text(table)
     json.dump(res, open(out / "results.json", "w"), indent=2)
