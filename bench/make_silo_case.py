@@ -14,8 +14,8 @@ a polydisperse nested start, whose rows cannot touch both walls, was tried and c
 The bottom is three walls: the floor left and right of a centred slit of 40 mm (20 diameters, far
 above the 2D jamming width) and the gate across the slit, which opens at t = 30 ms, after the column's
 elastic loading (the springs start unloaded, so the column first lands on itself: kinetic energy up to
-1.1 J at 16 ms, 0.3 J at 30 ms); every disk whose centre falls 10 mm below the floor is removed
-([discharge]). 24 000 steps of 5 us (0.12 s: 90 ms of discharge, some 400 disks out, the flow
+about 0.9 J at 10-20 ms, 0.05 J at 30 ms); every disk whose centre falls 10 mm below the floor is removed
+([discharge]). 24 000 steps of 5 us (0.12 s: 90 ms of discharge, some 370 disks out, the flow
 established over the slit).
 
 LAMMPS (bench/lammps_input.py): side walls as `fix wall/gran xplane`, the floor and the gate as
@@ -110,7 +110,7 @@ outlet_depth = {OUTLET!r}       # a disk whose centre is this far below the floo
 
 [numerics]
 integrator = "K18"
-dt = {DT!r}                 # s: 0.18 of the stability limit, 0.46 of it with every shear spring sticking (dem2d check)
+dt = {DT!r}                 # s: 0.15 of the stability limit, 0.37 of it with every shear spring sticking (dem2d check)
 duration = {q(STEPS * DT)!r}           # s: {STEPS} steps
 # skin: the default, a quarter of the smallest radius (0.225 mm)
 
