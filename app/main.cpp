@@ -15,6 +15,7 @@
 #include <iostream>
 #include <optional>
 #include <thread>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -137,11 +138,11 @@ int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
 int interrupted_exit() { return 128 + (dem::interrupt_signal() ? dem::interrupt_signal() : SIGTERM); }
 
 int cmd_run(const fs::path& file, const std::vector<std::string>& sets, fs::path out, bool quiet, dem::RunOptions opt) {
-  const dem::Case c = dem::read_case(file, sets);
+  dem::Case c = dem::read_case(file, sets);
   if (out.empty()) out = fs::path("runs") / file.stem();
   opt.out_dir = out;
   opt.progress = !quiet;
-  const dem::RunResult r = dem::run_case(c, opt);
+  const dem::RunResult r = dem::run_case(std::move(c), opt);  // the model's elements once, in the run
   if (!quiet) {
     fmt::print("{}: {} after {} steps (t = {:.6g} s) in {:.3g} s, {:.3g} element-steps/s\n", file.string(), r.status,
                r.steps, r.time, r.wall_seconds, r.element_steps_per_second);

@@ -4,9 +4,18 @@ for the same physical setup, single core:
 
     python3 bench/lammps_input.py CASE OUTDIR [--style gran|granular]
 
-Writes OUTDIR/settle.data and OUTDIR/in.settle. Supports only what the benchmark uses: [[row]]
+Writes OUTDIR/settle.data and OUTDIR/in.settle. Supports only what the benchmarks use: [[row]]
 generators of disks, axis-aligned segment walls forming a box, one grain-grain and one grain-wall
 linear law (kn, ks_ratio, friction, damping_ratio), gravity, K18 with dt and duration.
+
+A case with [discharge] (the silo, bench/make_silo_case.py) is written as OUTDIR/silo.data and
+OUTDIR/in.silo instead: vertical walls as `fix wall/gran xplane`; each horizontal wall (the floor on
+either side of the slit, and the gate across it) as `fix wall/gran/region` on a thin block (0.1 mm) under
+the segment with `side out` (particles outside the block meet its surface: its top face, and its
+corners at the segment's ends, as dem2d's segment ends); the run in two parts, the gate's fix removed
+after open_at (`unfix`); the box's bottom lies outlet_depth below the slit and atoms leaving it are lost
+(`thermo_modify lost ignore`: dem2d removes a disk once its centre is that deep, LAMMPS at the next
+neighbour-list rebuild after it crossed). The speed is the sum of both parts' Loop times.
 
 Mapping of the linear spring-dashpot (dem2d: eta_n = 2 zeta sqrt(m_eff k_n), eta_s = eta_n sqrt(k_s/k_n))
 onto LAMMPS' Hookean styles, whose dashpot is m_eff gamma:
@@ -46,6 +55,8 @@ def main():
     for w in c["wall"]:
         assert w["from"][0] == w["to"][0] or w["from"][1] == w["to"][1], "walls must be axis-aligned"
     xlo, xhi, ylo, yhi = min(xs), max(xs), min(ys), max(ys)
+    silo = c.get("discharge")
+    name = "silo" if silo else "settle"
     wall_material = c["wall"][0]["material"]
 
     def law(a, b):
@@ -82,7 +93,11 @@ def main():
     gmag = math.hypot(g[0], g[1])
 
     pad = 0.0  # the box is the walls' box; LAMMPS needs atoms inside [lo, hi)
-    with open(out / "settle.data", "w") as f:
+    if silo:  # the box reaches outlet_depth below the slit: an atom leaving it is lost (dem2d: removed)
+        gate = next(w for w in c["wall"] if w["name"] == silo["slit"])
+        assert gate["from"][1] == gate["to"][1], "the slit must be horizontal"
+        ylo = gate["from"][1] - silo["outlet_depth"]
+    with open(out / f"{name}.data", "w") as f:
         f.write(f"LAMMPS data file from {case_path} (bench/lammps_input.py)\n\n{len(disks)} atoms\n1 atom types\n\n")
         f.write(f"{xlo - pad!r} {xhi + pad!r} xlo xhi\n{ylo - pad!r} {yhi + pad!r} ylo yhi\n-0.5 0.5 zlo zhi\n\nAtoms # sphere\n\n")
         for k, (r, x, y, d) in enumerate(disks, 1):
@@ -97,7 +112,24 @@ def main():
                       f"damping mass_velocity")
     else:
         raise SystemExit(f"unknown --style {style}")
-    (out / "in.settle").write_text(f"""# {c['case']['title']}: the same setup as {case_path} (bench/lammps_input.py)
+    if silo:
+        walls = f"fix             xwalls all wall/gran {wall_model} xplane {xlo!r} {xhi!r}\n"
+        for w in c["wall"]:
+            if w["from"][0] == w["to"][0]:
+                assert w["from"][0] in (xlo, xhi), "vertical walls: the box's sides only"
+                continue
+            x0, x1 = sorted((w["from"][0], w["to"][0]))
+            y = w["from"][1]
+            walls += (f"region          {w['name']} block {x0!r} {x1!r} {y - 1e-4!r} {y!r} -0.5 0.5 side out units box\n"
+                      f"fix             {w['name']} all wall/gran/region {wall_model} region {w['name']}\n")
+        open_steps = round(silo.get("open_at", 0.0) / dt)
+        runs = (f"run             {open_steps}\nunfix           {silo['slit']}\n" if open_steps > 0 else
+                f"unfix           {silo['slit']}\n") + f"run             {steps - open_steps}\n"
+    else:
+        walls = (f"fix             xwalls all wall/gran {wall_model} xplane {xlo!r} {xhi!r}\n"
+                 f"fix             ywalls all wall/gran {wall_model} yplane {ylo!r} {yhi!r}\n")
+        runs = f"run             {steps}\n"
+    (out / f"in.{name}").write_text(f"""# {c['case']['title']}: the same setup as {case_path} (bench/lammps_input.py)
 units           si
 dimension       2
 atom_style      sphere
@@ -105,7 +137,7 @@ atom_modify     map array
 boundary        f f p
 newton          off
 comm_modify     vel yes
-read_data       settle.data
+read_data       {name}.data
 set             group all density/disc {rho * thickness!r}
 variable        m1 equal mass[1]
 print           "mass of disk 1: ${{m1}} kg"
@@ -115,17 +147,14 @@ neigh_modify    delay 0 every 1 check yes
 timestep        {dt!r}
 fix             integrate all nve/sphere disc
 fix             gravity all gravity {gmag!r} vector {g[0] / gmag!r} {g[1] / gmag!r} 0.0
-fix             xwalls all wall/gran {wall_model} xplane {xlo!r} {xhi!r}
-fix             ywalls all wall/gran {wall_model} yplane {ylo!r} {yhi!r}
-fix             plane all enforce2d
+{walls}fix             plane all enforce2d
 compute         contacts all contact/atom
 compute         ncontacts all reduce sum c_contacts
 variable        pair_contacts equal c_ncontacts/2
 thermo_style    custom step atoms ke v_pair_contacts
 thermo          {max(1, steps // 10)}
-thermo_modify   norm no lost error
-run             {steps}
-""")
+thermo_modify   norm no lost {"ignore" if silo else "error"}
+{runs}""")
     print(f"{len(disks)} disks, {steps} steps, dt = {dt} s, skin = {skin} m, style {style}")
 
 

@@ -12,7 +12,9 @@ Cases (written into the output folder):
           2000 steps, dem2d on 1 thread (LAMMPS has no such element);
   shuffled the 10^4 settle with its disks numbered at random (make_settle_case.py --shuffle), reordering off
           and on (numerics.reorder_every = 10), dem2d on 1 thread (bench/README.md, "Locality");
-  silo    a silo discharge of about 3x10^4 disks: runs cases/silo/discharge_30k.toml once it exists (hook).
+  silo    the silo discharge of 3x10^4 disks, cases/silo/discharge_30k.toml (bench/make_silo_case.py; --quick:
+          8000 steps), dem2d on 1 thread and LAMMPS (bench/lammps_input.py: region walls for the floor and
+          the gate); its rate counts the disks at the start (both codes lose disks through the slit).
 --quick: fewer steps (a smoke run of the whole suite in about a minute; the ratios are noisier).
 
 Every run repeats --reps times (default 3), all codes interleaved; the best run of each counts (other load
@@ -46,7 +48,8 @@ SETTLE_BIG = ("1e6", 500, 2000, 1000, 100)
 SHUFFLED = (50, 200, 10000, 2000)  # the 10^4 settle numbered at random (make_settle_case.py --shuffle): locality
 REORDER_EVERY = 10                 # numerics.reorder_every of its reordered run
 PRE = (100, 100, 2000, 400)  # rows, cols, steps, quick steps
-SILO_CASE = ROOT / "cases/silo/discharge_30k.toml"  # hook: run once the silo discharge case exists
+SILO_CASE = ROOT / "cases/silo/discharge_30k.toml"  # bench/make_silo_case.py's output
+SILO_QUICK = (150, 200, 8000)  # --quick: the same silo, 8000 steps (the gate opens after 6000)
 
 
 def cpu_model():
@@ -82,20 +85,26 @@ def run_dem2d(binary, case, out, threads, threads_ok):
         return None
     mem = timed(cmd)
     s = json.load(open(out / "summary.json"))
+    n0 = s["resolved_case"]["elements"]["count"]  # at the start (a discharge removes disks)
     return {"rate": s["element_steps_per_second"], "memory": mem, "elements": s["elements"], "steps": s["steps"],
-            "contacts": s["contacts"]}
+            "contacts": s["contacts"], "elements0": n0, "rate0": n0 * s["steps"] / s["wall_seconds"],
+            "discharged": s.get("discharge", {}).get("discharged")}
 
 
 LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 
 
-def run_lammps(lmp, folder, rep):
+def run_lammps(lmp, folder, rep, script="in.settle"):
+    """One LAMMPS run; a script of several `run`s (the silo: before and after the gate opens) sums their Loop
+    times; rate0 counts the atoms of the first part (the start), rate those at the end."""
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    mem = timed([lmp, "-in", "in.settle", "-log", f"log.{rep}", "-screen", "none", "-nocite"], cwd=folder, env=env)
-    m = LOOP.search((folder / f"log.{rep}").read_text())
-    secs, procs, steps, atoms = float(m[1]), int(m[2]), int(m[3]), int(m[4])
-    assert procs == 1
-    return {"rate": steps * atoms / secs, "memory": mem, "elements": atoms, "steps": steps}
+    mem = timed([lmp, "-in", script, "-log", f"log.{rep}", "-screen", "none", "-nocite"], cwd=folder, env=env)
+    loops = LOOP.findall((folder / f"log.{rep}").read_text())
+    assert loops and all(int(m[1]) == 1 for m in loops)
+    secs, steps = sum(float(m[0]) for m in loops), sum(int(m[2]) for m in loops)
+    atoms0, atoms = int(loops[0][3]), int(loops[-1][3])
+    return {"rate": steps * atoms / secs, "memory": mem, "elements": atoms, "steps": steps, "elements0": atoms0,
+            "rate0": steps * atoms0 / secs, "discharged": atoms0 - atoms}
 
 
 def best(runs):
@@ -211,7 +220,17 @@ def main():
         case.write_text(text.replace('integrator = "K18"\n', f'integrator = "K18"\nreorder_every = {every}\n', 1))
         cases.append(("shuffled", f"reorder_every={every}", case, None))
     if SILO_CASE.exists():
-        cases.append(("silo", "3e4", SILO_CASE, None))
+        case = SILO_CASE
+        if a.quick:
+            case = out / "silo_quick.toml"
+            case.write_text(subprocess.run([sys.executable, str(ROOT / "bench/make_silo_case.py")] +
+                                           [str(v) for v in SILO_QUICK], check=True, stdout=subprocess.PIPE,
+                                           text=True).stdout)
+        lf = out / "lammps_silo"
+        if lmp:
+            subprocess.run([sys.executable, str(ROOT / "bench/lammps_input.py"), str(case), str(lf)], check=True,
+                           stdout=subprocess.DEVNULL)
+        cases.append(("silo", "3e4", case, lf))
 
     runs = {}  # (kind, label, code) -> [run]
     for rep in range(1, a.reps + 1):
@@ -222,6 +241,8 @@ def main():
                     runs.setdefault((kind, label, f"{blabel} {th}T"), []).append(r)
             if kind == "settle" and lmp:
                 runs.setdefault((kind, label, "LAMMPS"), []).append(run_lammps(lmp, lf, rep))
+            if kind == "silo" and lmp:
+                runs.setdefault((kind, label, "LAMMPS"), []).append(run_lammps(lmp, lf, rep, "in.silo"))
             print(f"rep {rep}: {kind} {label} done", file=sys.stderr, flush=True)
 
     res = {"cpu": cpu_model(), "cores": os.cpu_count(), "load_average": os.getloadavg(), "reps": a.reps,
@@ -290,9 +311,16 @@ def main():
             lines.append("| " + " | ".join(row) + " |")
     for k in sorted(k for k in B if k.startswith("shuffled ")):
         lines.append(f"\n10^4 settle, disks numbered at random ({k}): {B[k]['rate'] / 1e6:.2f} M disk-steps/s")
-    silo = [k for k in B if k.startswith("silo ")]
-    for k in silo:
-        lines.append(f"\nsilo discharge ({k}): {B[k]['rate'] / 1e6:.2f} M element-steps/s")
+    silo = {k[len("silo 3e4 "):]: B[k] for k in B if k.startswith("silo ")}
+    if silo:
+        lines += ["", "| silo discharge, 3x10^4 disks | M disk-steps/s (disks at the start) | / LAMMPS | "
+                  "peak memory [B/disk] | / LAMMPS memory | disks out |", "|---|---|---|---|---|---|"]
+        lam = silo.get("LAMMPS")
+        for code, g in silo.items():
+            ratio = f"{g['rate0'] / lam['rate0']:.2f}" if lam else "-"
+            mem = f"{g['memory'] / lam['memory']:.2f}" if lam else "-"
+            lines.append(f"| {code} | {g['rate0'] / 1e6:.2f} | {ratio} | {g['memory'] / g['elements0']:.0f} | {mem} | "
+                         f"{g['discharged']} |")
     table = "\n".join(lines) + "\n"
     (out / "table.md").write_text(table)
     json.dump(res, open(out / "results.json", "w"), indent=2)

@@ -233,3 +233,29 @@ TEST_CASE("Every quantity name has its SI unit for the series header and the pro
   CHECK(dem::series_column_name("e0.px(1,-1) [m]") == "e0.px(1,-1)");
   CHECK(dem::series_column_name("t") == "t");
 }
+
+TEST_CASE("A run given its case by move reports and writes the same as a run given a copy", "[run][memory]") {
+  // run_case moves the model into its Simulation (the elements exist once during the run); what the
+  // summary reports of the case (counts, total mass) is taken before the move.
+  const std::vector<std::string> sets = {"numerics.duration=8e-4", "output.every=50"};  // 200 steps
+  dem::Case c = dem::read_case(source("cases/bench/settle_10k.toml"), sets);
+  // read_case returns the element arrays without the generators' growth slack.
+  CHECK(c.model.elements.x.capacity() == c.model.elements.size());
+  CHECK(c.model.elements.active.capacity() == c.model.elements.size());
+  const auto a = fresh_dir("by_copy"), b = fresh_dir("by_move");
+  dem::RunOptions o;
+  o.out_dir = a;
+  const dem::RunResult copied = dem::run_case(c, o);
+  REQUIRE(c.model.elements.size() == 10000);  // the caller's case is untouched
+  o.out_dir = b;
+  const dem::RunResult moved = dem::run_case(std::move(c), o);
+  REQUIRE(copied.status == "completed");
+  REQUIRE(moved.status == "completed");
+  const auto& rc = moved.summary["resolved_case"]["elements"];
+  CHECK(rc["count"].get<std::size_t>() == 10000);
+  CHECK(rc["disks"].get<std::size_t>() == 10000);
+  CHECK(rc["total_mass"].get<double>() == Approx(copied.summary["resolved_case"]["elements"]["total_mass"].get<double>()).epsilon(0));
+  CHECK(rc["total_mass"].get<double>() > 70.0);  // 10^4 disks of 2650 pi r^2, r = 0.90-1.00 mm: 75.5 kg
+  CHECK(moved.summary["resolved_case"] == copied.summary["resolved_case"]);
+  CHECK(slurp(a / "series.csv") == slurp(b / "series.csv"));
+}

@@ -24,10 +24,9 @@ double run_cost(const dem::Case& c) {
 RunReply run_here(const RunRequest& req, const std::filesystem::path& out_dir) {
   if (dem::interrupt_signal() != 0) return {"interrupted", "interrupted before the run started", 0.0, {}};
   try {
-    const dem::Case c = dem::read_case(req.case_file, req.sets);
     dem::RunOptions o;
     o.out_dir = out_dir;
-    const dem::RunResult r = dem::run_case(c, o);
+    const dem::RunResult r = dem::run_case(dem::read_case(req.case_file, req.sets), o);
     return {r.status, r.message, r.element_steps_per_second, r.probes};
   } catch (const dem::CaseError& e) {
     return {"case-error", e.what(), 0.0, {}};

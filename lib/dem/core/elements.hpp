@@ -31,6 +31,15 @@ struct Elements {
                                        // elements in space (spatial_order.hpp), its id never does
 
   std::size_t size() const { return x.size(); }
+  /// Gives back what the arrays' growth reserved beyond their size (up to half of it after push_backs),
+  /// one array at a time (bench/README.md, the bytes).
+  void shrink_to_fit() {
+    for (auto* v : {&x, &y, &phi, &dx, &dy, &dphi, &vx, &vy, &omega, &fx, &fy, &moment, &radius, &mass, &inertia,
+                    &inv_mass, &inv_inertia})
+      v->shrink_to_fit();
+    material.shrink_to_fit(), group.shrink_to_fit(), shape.shrink_to_fit(), motion.shrink_to_fit();
+    drive.shrink_to_fit(), active.shrink_to_fit();
+  }
 };
 
 }  // namespace dem

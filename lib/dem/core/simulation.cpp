@@ -19,28 +19,40 @@ namespace {
 
 inline std::uint64_t key(std::uint32_t i, std::uint32_t j) { return (std::uint64_t{i} << 32) | j; }
 
-/// Merges the old (sorted) slots into the new (sorted) candidates, which next(c) yields one by one as
-/// fresh slots (false at the end; no list of fresh slots is stored): a candidate keeps its old history
-/// if it had one; an old slot that must outlive the rebuild is kept even without candidate.
-template <class Slot, class Next>
-void merge(std::vector<Slot>& slots, std::vector<Slot>& scratch, Next&& next) {
-  scratch.clear();
-  std::size_t o = 0;
-  for (Slot c; next(c);) {
-    const std::uint64_t kc = key(c.i, c.j);
-    while (o < slots.size() && key(slots[o].i, slots[o].j) < kc) {
-      if (must_keep(slots[o])) scratch.push_back(slots[o]);
-      ++o;
-    }
-    if (o < slots.size() && key(slots[o].i, slots[o].j) == kc) {
-      scratch.push_back(slots[o++]);
-    } else {
-      scratch.push_back(c);
+/// Merges fresh candidates into the old slots (both sorted by (i, j)) in place, without a second list:
+/// make(fresh[k], slot) turns a candidate into a fresh slot, or skips it (false). The result is the
+/// list a merge into a new vector gives: every candidate in (i, j) order, with its old history if it had
+/// one, and the old slots without candidate that must outlive the rebuild. First the old slots that stay
+/// are compacted towards the front (a write never passes the read), then the candidates without an old
+/// slot are inserted from the back (the write stays ahead of the read by the inserts still to come).
+/// A list that grows gets 1/8 headroom, not the vector's doubling (bench/README.md, the bytes).
+template <class Slot, class Fresh, class Make>
+void merge(std::vector<Slot>& slots, const std::vector<Fresh>& fresh, Make&& make) {
+  const std::size_t n = fresh.size();
+  Slot f;
+  std::size_t kept = 0, inserts = 0, c = 0;
+  for (std::size_t o = 0; o < slots.size(); ++o) {
+    const std::uint64_t ko = key(slots[o].i, slots[o].j);
+    for (; c < n && key(fresh[c].i, fresh[c].j) < ko; ++c) inserts += make(fresh[c], f) ? 1 : 0;
+    bool candidate = false;
+    if (c < n && key(fresh[c].i, fresh[c].j) == ko) candidate = make(fresh[c++], f);
+    if (candidate || must_keep(slots[o])) {
+      if (kept != o) slots[kept] = slots[o];
+      ++kept;
     }
   }
-  for (; o < slots.size(); ++o)
-    if (must_keep(slots[o])) scratch.push_back(slots[o]);
-  slots.swap(scratch);
+  for (; c < n; ++c) inserts += make(fresh[c], f) ? 1 : 0;
+  const std::size_t total = kept + inserts;
+  if (total > slots.capacity()) slots.reserve(total + total / 8);
+  slots.resize(total);
+  std::size_t w = total, o = kept;
+  for (c = n; c-- > 0 && w > o;) {
+    if (!make(fresh[c], f)) continue;
+    const std::uint64_t kc = key(f.i, f.j);
+    while (o > 0 && key(slots[o - 1].i, slots[o - 1].j) > kc) slots[--w] = slots[--o];
+    if (o > 0 && key(slots[o - 1].i, slots[o - 1].j) == kc) slots[--w] = slots[--o];  // its old history
+    else slots[--w] = f;
+  }
 }
 
 /// Ends a contact: the slot stays (it is a candidate pair) but forgets its history.
@@ -205,22 +217,18 @@ void Simulation::rebuild() {
   ++rebuilds_;
   const Elements& e = m_.elements;
   search_.build(e, skin_, candidates_);
-  // A fresh slot for every candidate, routed by the pair's law: yielded one by one into the merge.
-  auto fresh_pairs = [&](LawKind kind) {
-    return [this, &e, kind, c = std::size_t{0}](auto& s) mutable {
-      while (c < candidates_.size()) {
-        const CandidatePair& p = candidates_[c++];
-        const std::int32_t law = m_.law_index(e.material[p.i], e.material[p.j]);
-        if (law < 0 || m_.laws[static_cast<std::size_t>(law)].kind != kind) continue;
-        s = {};
-        s.i = p.i, s.j = p.j, s.law = law;
-        return true;
-      }
-      return false;
+  // A fresh slot for every candidate of the law's kind (routed by the pair's law).
+  auto fresh_pair = [&](LawKind kind) {
+    return [this, &e, kind](const CandidatePair& p, auto& s) {
+      const std::int32_t law = m_.law_index(e.material[p.i], e.material[p.j]);
+      if (law < 0 || m_.laws[static_cast<std::size_t>(law)].kind != kind) return false;
+      s = {};
+      s.i = p.i, s.j = p.j, s.law = law;
+      return true;
     };
   };
-  merge(linear_pairs_, linear_scratch_, fresh_pairs(LawKind::linear));
-  merge(face_pairs_, face_scratch_, fresh_pairs(LawKind::face));
+  merge(linear_pairs_, candidates_, fresh_pair(LawKind::linear));
+  merge(face_pairs_, candidates_, fresh_pair(LawKind::face));
   // Element–wall candidates (few: the elements near a wall).
   std::vector<LinearSlot>& lin = linear_fresh_;
   std::vector<FaceSlot>& face = face_fresh_;
@@ -248,15 +256,12 @@ void Simulation::rebuild() {
       }
     }
   }
-  auto from = [](const auto& list) {
-    return [&list, c = std::size_t{0}](auto& s) mutable {
-      if (c == list.size()) return false;
-      s = list[c++];
-      return true;
-    };
+  auto copy = [](const auto& fresh, auto& s) {
+    s = fresh;
+    return true;
   };
-  merge(linear_walls_, linear_scratch_, from(lin));
-  merge(face_walls_, face_scratch_, from(face));
+  merge(linear_walls_, lin, copy);
+  merge(face_walls_, face, copy);
   x_ref_ = e.x;
   y_ref_ = e.y;
   wall_ref_.resize(m_.walls.size());

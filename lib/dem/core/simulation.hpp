@@ -134,8 +134,8 @@ class Simulation {
   Model m_;
   NeighbourSearch search_;
   std::vector<CandidatePair> candidates_;
-  std::vector<LinearSlot> linear_pairs_, linear_walls_, linear_scratch_;
-  std::vector<FaceSlot> face_pairs_, face_walls_, face_scratch_;
+  std::vector<LinearSlot> linear_pairs_, linear_walls_;  // merged in place at a rebuild (no second list)
+  std::vector<FaceSlot> face_pairs_, face_walls_;
   std::vector<LinearSlot> linear_fresh_;  // rebuild scratch (wall candidates), kept to reuse its capacity
   std::vector<FaceSlot> face_fresh_;
   ContactIndex index_;                        // each element's slots in the fixed summation order

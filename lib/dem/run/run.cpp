@@ -7,6 +7,7 @@
 #include <ctime>
 #include <limits>
 #include <optional>
+#include <utility>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -257,7 +258,7 @@ void check_outputs(const Case& c) {
     compile_located(c.stop.after_peak_quantity, c.path.string(), "stop.after_peak.quantity", c.model);
 }
 
-RunResult run_case(const Case& c, const RunOptions& opt) {
+RunResult run_case(Case c, const RunOptions& opt) {
   const double limit = check_case(c);  // throws CaseError before anything runs
   check_outputs(c);
   // A restart reads its checkpoint first (it may lie in the output folder, which is cleared below).
@@ -270,7 +271,10 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
                                   c.path.string(), opt.restart.string(), restart->case_path, restart->case_hash,
                                   case_hash(c)));
   }
-  Simulation sim(c.model);
+  // What summary.json reports of the case as given (counts, masses, walls: the state at the start), taken
+  // before the model moves into the Simulation; c.model is empty from here on (read sim.model()).
+  const nlohmann::json resolved_si = resolved_case_si(c);
+  Simulation sim(std::move(c.model));
   sim.set_threads(opt.threads, opt.min_per_thread);
   const Model& m = sim.model();
   const std::int64_t total_steps = std::llround(std::ceil(m.numerics.duration / m.numerics.dt - 1e-9));
@@ -705,7 +709,7 @@ RunResult run_case(const Case& c, const RunOptions& opt) {
       {"units", {{"time", "s"}, {"dt", "s"}, {"stability_limit", "s"}, {"wall_seconds", "s"},
                  {"element_steps_per_second", "1/s"}, {"energies", "J"}}},
       {"case_as_read", c.resolved},
-      {"resolved_case", resolved_case_si(c)},
+      {"resolved_case", resolved_si},
   };
   res.summary["case_hash"] = case_hash(c);
   if (m.discharge.enabled) {
