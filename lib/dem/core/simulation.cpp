@@ -167,11 +167,14 @@ void Simulation::apply_preloads() {
   if (threads_used() == 1) {
     sweep_scatter(0.0);  // onto the forces the elements hold
   } else {
-    on_threads(threads_used(), [&](int t, int nt) {
-      sweep_slots(0.0, t, nt);
+    if (shares_.threads != threads_used()) share_work(threads_used());
+    const std::size_t shares = static_cast<std::size_t>(shares_.threads);
+    on_threads(shares_.threads, [&](int t, int nt) {
+      for (std::size_t k = static_cast<std::size_t>(t); k < shares; k += static_cast<std::size_t>(nt))
+        sweep_share(0.0, k, false);  // onto the forces the elements hold
 #pragma omp barrier
-      const auto [b, end] = share(e.size(), t, nt);
-      gather_forces(b, end, false);  // onto the forces the elements hold
+      for (std::size_t k = static_cast<std::size_t>(t); k < shares; k += static_cast<std::size_t>(nt))
+        gather_shared(k, false);
     });
   }
   sum_wall_forces();
@@ -267,39 +270,46 @@ void Simulation::index_contacts() {
   index_.build(m_.elements.size(), linear_pairs_, face_pairs_, linear_walls_, face_walls_);
   face_push_.resize(face_pairs_.size());
   face_wall_push_.resize(face_walls_.size());
+  shares_.threads = 0;
+  if (threads_used() > 1) share_work(threads_used());
+}
+
+void Simulation::share_work(int threads) {
+  shares_.build(threads, m_.elements.size(), linear_pairs_, face_pairs_, linear_walls_, face_walls_);
 }
 
 void Simulation::sweep_scatter(double inv_dt) {
-  sweep_linear_pairs<true>(inv_dt, 0, linear_pairs_.size());
-  sweep_face_pairs<true>(inv_dt, 0, face_pairs_.size());
-  sweep_linear_walls<true>(inv_dt, 0, linear_walls_.size());
-  sweep_face_walls<true>(inv_dt, 0, face_walls_.size());
+  sweep_linear_pairs<false>(inv_dt, 0, linear_pairs_.size());
+  sweep_face_pairs<false>(inv_dt, 0, face_pairs_.size());
+  sweep_linear_walls<false>(inv_dt, 0, linear_walls_.size());
+  sweep_face_walls<false>(inv_dt, 0, face_walls_.size());
 }
 
-void Simulation::sweep_slots(double inv_dt, int t, int nt) {
-  {
-    const auto [b, e] = share(linear_pairs_.size(), t, nt);
-    sweep_linear_pairs<false>(inv_dt, b, e);
+void Simulation::sweep_share(double inv_dt, std::size_t k, bool from_weight) {
+  const std::size_t b = shares_.first[k], end = shares_.first[k + 1];
+  if (from_weight) {  // (K15): gravity; the shared elements start from it in gather_forces
+    Elements& e = m_.elements;
+    weight(e.fx.data() + b, e.mass.data() + b, m_.gravity.x, end - b);
+    weight(e.fy.data() + b, e.mass.data() + b, m_.gravity.y, end - b);
+    std::fill(e.moment.begin() + static_cast<std::ptrdiff_t>(b), e.moment.begin() + static_cast<std::ptrdiff_t>(end), 0.0);
   }
-  {
-    const auto [b, e] = share(face_pairs_.size(), t, nt);
-    sweep_face_pairs<false>(inv_dt, b, e);
-  }
-  {
-    const auto [b, e] = share(linear_walls_.size(), t, nt);
-    sweep_linear_walls<false>(inv_dt, b, e);
-  }
-  {
-    const auto [b, e] = share(face_walls_.size(), t, nt);
-    sweep_face_walls<false>(inv_dt, b, e);
-  }
+  const auto& sl = shares_.slots;
+  sweep_linear_pairs<true>(inv_dt, sl[0][k], sl[0][k + 1]);
+  sweep_face_pairs<true>(inv_dt, sl[1][k], sl[1][k + 1]);
+  sweep_linear_walls<true>(inv_dt, sl[2][k], sl[2][k + 1]);
+  sweep_face_walls<true>(inv_dt, sl[3][k], sl[3][k + 1]);
+}
+
+void Simulation::gather_shared(std::size_t k, bool from_weight) {
+  const std::uint32_t b = shares_.shared_start[k], end = shares_.shared_start[k + 1];
+  gather_forces(shares_.shared_items.data() + b, end - b, from_weight);
 }
 
 // Each element sums what its slots computed, in the fixed order of the contact index, with the very
 // operations the one-thread sweeps performed (f_i += f, f_j −= f; K15, M12): the same sums bit for bit.
 // A slot that added nothing this step is skipped by adding −0 (x + (−0) = x) or subtracting +0 (x − 0 = x)
 // for every x, also x = −0, without a branch.
-void Simulation::gather_forces(std::size_t b, std::size_t end, bool from_weight) {
+void Simulation::gather_forces(const std::uint32_t* items, std::size_t count, bool from_weight) {
   Elements& e = m_.elements;
   const double* const mass = e.mass.data();
   const double* const radius = e.radius.data();
@@ -315,7 +325,8 @@ void Simulation::gather_forces(std::size_t b, std::size_t end, bool from_weight)
   const std::uint32_t* const os = index_.other_start.data();
   const std::uint32_t* const oi = index_.other_items.data();
   const Vec2 g = m_.gravity;
-  for (std::size_t k = b; k < end; ++k) {
+  for (std::size_t c = 0; c < count; ++c) {
+    const std::uint32_t k = items[c];
     double fx = from_weight ? mass[k] * g.x : fx_e[k];  // (K15): gravity, m g
     double fy = from_weight ? mass[k] * g.y : fy_e[k];
     double mom = from_weight ? 0.0 : moment[k];
@@ -429,7 +440,7 @@ void Simulation::start_linear(LinearSlot& s, double overlap, double du_n, double
   }
 }
 
-template <bool Scatter>
+template <bool Shares>
 void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
   const double* const x = e.x.data();
@@ -439,9 +450,10 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
   const double* const dx = e.dx.data();
   const double* const dy = e.dy.data();
   const double* const dphi = e.dphi.data();
-  [[maybe_unused]] double* const fx_e = e.fx.data();  // Scatter (local pointers: no reloads after stores)
-  [[maybe_unused]] double* const fy_e = e.fy.data();
-  [[maybe_unused]] double* const moment = e.moment.data();
+  double* const fx_e = e.fx.data();  // local pointers: no reloads after stores
+  double* const fy_e = e.fy.data();
+  double* const moment = e.moment.data();
+  [[maybe_unused]] const std::uint8_t* const shared = shares_.shared.data();
   const PairLaw* const laws = m_.laws.data();
   LinearSlot* const slots = linear_pairs_.data();
   for (std::size_t k = b; k < end; ++k) {
@@ -466,18 +478,29 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
       reset_slot(s);
       continue;
     }
-    s.f = f;  // gather_forces adds it to i and j (K15), or:
+    s.f = f;  // for outputs, and for gather_forces if an element is shared
     s.nx = nx;
     s.ny = ny;
-    if constexpr (Scatter) {
-      // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
-      const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;
+    // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
+    const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;
+    if constexpr (!Shares) {
       fx_e[i] += fx;
       fy_e[i] += fy;
       fx_e[j] -= fx;
       fy_e[j] -= fy;
       moment[i] -= radius[i] * f.fs;
       moment[j] -= radius[j] * f.fs;
+    } else {
+      if (!shared[i]) {
+        fx_e[i] += fx;
+        fy_e[i] += fy;
+        moment[i] -= radius[i] * f.fs;
+      }
+      if (!shared[j]) {
+        fx_e[j] -= fx;
+        fy_e[j] -= fy;
+        moment[j] -= radius[j] * f.fs;
+      }
     }
   }
 }
@@ -489,7 +512,7 @@ void Simulation::open_wall(std::uint32_t w) {
   index_contacts();  // the slot lists changed
 }
 
-template <bool Scatter>
+template <bool Shares>
 void Simulation::sweep_linear_walls(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
   for (std::size_t k = b; k < end; ++k) {
@@ -515,10 +538,10 @@ void Simulation::sweep_linear_walls(double inv_dt, std::size_t b, std::size_t en
       reset_slot(s);
       continue;
     }
-    s.f = f;  // gather_forces and sum_wall_forces add it
+    s.f = f;  // sum_wall_forces adds it, and gather_forces if the element is shared
     s.nx = nx;
     s.ny = ny;
-    if constexpr (Scatter) {
+    if (!Shares || !shares_.shared[i]) {
       e.fx[i] += -f.fn * nx + f.fs * ny;
       e.fy[i] += -f.fn * ny - f.fs * nx;
       e.moment[i] -= r * f.fs;
@@ -549,7 +572,7 @@ FaceConstants face_constants(const PairLaw& law, double r_i, double r_j, double 
   return c;
 }
 
-template <bool Scatter>
+template <bool Shares>
 void Simulation::sweep_face_pairs(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
   for (std::size_t n = b; n < end; ++n) {
@@ -602,18 +625,20 @@ void Simulation::sweep_face_pairs(double inv_dt, std::size_t b, std::size_t end)
     push.mi = -e.radius[i] * f.q + f.p_moment;
     push.mj = -e.radius[j] * f.q - f.p_moment;
     push.applied = 1;
-    if constexpr (Scatter) {
+    if (!Shares || !shares_.shared[i]) {
       e.fx[i] += push.fx;
       e.fy[i] += push.fy;
+      e.moment[i] += push.mi;
+    }
+    if (!Shares || !shares_.shared[j]) {
       e.fx[j] -= push.fx;
       e.fy[j] -= push.fy;
-      e.moment[i] += push.mi;
       e.moment[j] += push.mj;
     }
   }
 }
 
-template <bool Scatter>
+template <bool Shares>
 void Simulation::sweep_face_walls(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
   for (std::size_t n = b; n < end; ++n) {
@@ -659,7 +684,7 @@ void Simulation::sweep_face_walls(double inv_dt, std::size_t b, std::size_t end)
     push.fy = -f.p * ny - f.q * nx;
     push.mi = -r * f.q + f.p_moment;
     push.applied = 1;
-    if constexpr (Scatter) {
+    if (!Shares || !shares_.shared[i]) {
       e.fx[i] += push.fx;
       e.fy[i] += push.fy;
       e.moment[i] += push.mi;
@@ -756,20 +781,25 @@ void Simulation::step() {
   const double dt_v = velocity_dt();
   const bool free_only = all_free();
   const int nt = threads_used();
-  if (nt == 1) {  // each slot adds its forces at once, in slot order (the order gather_forces keeps)
+  if (nt == 1) {  // each slot adds its forces at once, in slot order
     Elements& e = m_.elements;
     weight(e.fx.data(), e.mass.data(), m_.gravity.x, n);  // (K15): gravity
     weight(e.fy.data(), e.mass.data(), m_.gravity.y, n);
     std::fill(e.moment.begin(), e.moment.end(), 0.0);
     sweep_scatter(inv_dt);
     if (!plate) integrate_range(0, n, dt_v, free_only);
-  } else {
+  } else {  // the same sums, shared as thread_shares.hpp says
+    if (shares_.threads != nt) share_work(nt);
+    const std::size_t shares = static_cast<std::size_t>(shares_.threads);
     on_threads(nt, [&](int t, int nt_) {
-      sweep_slots(inv_dt, t, nt_);  // every contact law (K5–K14, M3–M12) into its slot
+      // Normally one share per thread; should OpenMP start fewer threads, they take turns.
+      for (std::size_t k = static_cast<std::size_t>(t); k < shares; k += static_cast<std::size_t>(nt_))
+        sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
 #pragma omp barrier
-      const auto [b, end] = share(n, t, nt_);
-      gather_forces(b, end, true);  // (K15): m g plus the contacts, per element in a fixed order
-      if (!plate) integrate_range(b, end, dt_v, free_only);  // (K17), (K18) or (K19)
+      for (std::size_t k = static_cast<std::size_t>(t); k < shares; k += static_cast<std::size_t>(nt_)) {
+        gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
+        if (!plate) integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, free_only);  // (K17–K19)
+      }
     });
   }
   sum_wall_forces();
