@@ -7,9 +7,6 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "dem/core/stability.hpp"
 
@@ -86,27 +83,6 @@ void weight(double* __restrict f, const double* __restrict m, double g, std::siz
   for (std::size_t i = 0; i < n; ++i) f[i] = m[i] * g;
 }
 
-/// Runs body(thread, threads) on `threads` threads (OpenMP), or body(0, 1) on the caller's. A
-/// `#pragma omp barrier` inside body synchronises the threads (and does nothing on one thread).
-template <class Body>
-void on_threads(int threads, Body&& body) {
-#ifdef _OPENMP
-  if (threads > 1) {
-#pragma omp parallel num_threads(threads)
-    body(omp_get_thread_num(), omp_get_num_threads());
-    return;
-  }
-#endif
-  (void)threads;
-  body(0, 1);
-}
-
-/// The part [b, e) of n items that thread t of nt takes.
-inline std::pair<std::size_t, std::size_t> share(std::size_t n, int t, int nt) {
-  return {n * static_cast<std::size_t>(t) / static_cast<std::size_t>(nt),
-          n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(nt)};
-}
-
 }  // namespace
 
 Simulation::Simulation(Model model) : m_(std::move(model)) {
@@ -168,14 +144,13 @@ void Simulation::apply_preloads() {
     sweep_scatter(0.0);  // onto the forces the elements hold
   } else {
     if (shares_.threads != threads_used()) share_work(threads_used());
-    const std::size_t shares = static_cast<std::size_t>(shares_.threads);
-    on_threads(shares_.threads, [&](int t, int nt) {
-      for (std::size_t k = static_cast<std::size_t>(t); k < shares; k += static_cast<std::size_t>(nt))
-        sweep_share(0.0, k, false);  // onto the forces the elements hold
-#pragma omp barrier
-      for (std::size_t k = static_cast<std::size_t>(t); k < shares; k += static_cast<std::size_t>(nt))
-        gather_shared(k, false);
-    });
+    WorkerThreads& pool = workers(threads_used());
+    auto body = [&](int t) {
+      sweep_share(0.0, static_cast<std::size_t>(t), false);  // onto the forces the elements hold
+      pool.barrier();
+      gather_shared(static_cast<std::size_t>(t), false);
+    };
+    pool.run(body);
   }
   sum_wall_forces();
   preloading_ = false;
@@ -272,6 +247,11 @@ void Simulation::index_contacts() {
   face_wall_push_.resize(face_walls_.size());
   shares_.threads = 0;
   if (threads_used() > 1) share_work(threads_used());
+}
+
+WorkerThreads& Simulation::workers(int threads) {
+  if (!workers_.pool || workers_.pool->size() != threads) workers_.pool = std::make_unique<WorkerThreads>(threads);
+  return *workers_.pool;
 }
 
 void Simulation::share_work(int threads) {
@@ -790,25 +770,25 @@ void Simulation::step() {
     if (!plate) integrate_range(0, n, dt_v, free_only);
   } else {  // the same sums, shared as thread_shares.hpp says
     if (shares_.threads != nt) share_work(nt);
-    const std::size_t shares = static_cast<std::size_t>(shares_.threads);
-    on_threads(nt, [&](int t, int nt_) {
-      // Normally one share per thread; should OpenMP start fewer threads, they take turns.
-      for (std::size_t k = static_cast<std::size_t>(t); k < shares; k += static_cast<std::size_t>(nt_))
-        sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
-#pragma omp barrier
-      for (std::size_t k = static_cast<std::size_t>(t); k < shares; k += static_cast<std::size_t>(nt_)) {
-        gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
-        if (!plate) integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, free_only);  // (K17–K19)
-      }
-    });
+    WorkerThreads& pool = workers(nt);
+    auto body = [&](int t) {  // thread t takes share t
+      const std::size_t k = static_cast<std::size_t>(t);
+      sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
+      pool.barrier();
+      gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
+      if (!plate) integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, free_only);  // (K17–K19)
+    };
+    pool.run(body);
   }
   sum_wall_forces();
   if (plate) {
     advance_base_plate();
-    on_threads(threads_used(), [&](int t, int nt) {
-      const auto [b, end] = share(n, t, nt);
-      integrate_range(b, end, dt_v, free_only);
-    });
+    if (nt == 1) {
+      integrate_range(0, n, dt_v, free_only);
+    } else {
+      auto body = [&](int t) { integrate_range(shares_.first[static_cast<std::size_t>(t)], shares_.first[static_cast<std::size_t>(t) + 1], dt_v, free_only); };
+      workers(nt).run(body);
+    }
   }
   move_walls();
   ++step_;

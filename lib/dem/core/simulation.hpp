@@ -3,6 +3,7 @@
 // pseudo-rectangle elements: contact forces from the increments of the step (K5–K15, M3–M12),
 // velocities (K17), next increments (K18 or K19), positions.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "dem/core/neighbour_search.hpp"
 #include "dem/core/stability.hpp"
 #include "dem/core/thread_shares.hpp"
+#include "dem/core/worker_threads.hpp"
 
 namespace dem {
 
@@ -132,6 +134,17 @@ class Simulation {
   std::vector<FaceSlot> face_fresh_;
   ContactIndex index_;                        // each element's slots in the fixed summation order
   ThreadShares shares_;                       // which thread computes what (built for threads_used())
+  // The threads of a step, started at the first step on several threads; a copy of the simulation
+  // starts its own.
+  struct Workers {
+    std::unique_ptr<WorkerThreads> pool;
+    Workers() = default;
+    Workers(const Workers&) {}
+    Workers& operator=(const Workers&) { return *this; }
+    Workers(Workers&&) noexcept = default;
+    Workers& operator=(Workers&&) noexcept = default;
+  } workers_;
+  WorkerThreads& workers(int threads);
   std::vector<ElementPush> face_push_, face_wall_push_;  // this step's face forces on the elements
   int threads_ = 1;
   std::size_t min_per_thread_ = 4096;
