@@ -162,6 +162,13 @@ void Simulation::apply_preloads() {
 }
 
 bool Simulation::needs_rebuild() const {
+  const double limit2 = rebuild_limit2();
+  if (limit2 < 0.0) return true;
+  const Elements& e = m_.elements;
+  return any_displaced(e.x.data(), e.y.data(), x_ref_.data(), y_ref_.data(), limit2, e.size());
+}
+
+double Simulation::rebuild_limit2() const {
   // Rebuild once an element may have moved half the skin since the last rebuild, or its displacement
   // plus the walls' reaches the skin: d ≥ min(skin/2, skin − max_w). Compared on squared displacements
   // (no square root, a loop the compiler vectorises), with a 1e-12 relative margin so that the test never
@@ -172,10 +179,8 @@ bool Simulation::needs_rebuild() const {
     max_w = std::max(max_w, norm(m_.walls[k].a - wall_ref_[k]));
   }
   const double limit = std::min(0.5 * skin_, skin_ - max_w);
-  if (!(limit > 0.0)) return true;
-  const double limit2 = limit * limit * (1.0 - 1e-12);
-  const Elements& e = m_.elements;
-  return any_displaced(e.x.data(), e.y.data(), x_ref_.data(), y_ref_.data(), limit2, e.size());
+  if (!(limit > 0.0)) return -1.0;  // rebuild now
+  return limit * limit * (1.0 - 1e-12);
 }
 
 void Simulation::rebuild() {
@@ -751,7 +756,8 @@ void Simulation::move_walls() {
 }
 
 void Simulation::step() {
-  if (step_ > 0 && needs_rebuild()) rebuild();
+  const int nt = threads_used();
+  if (nt == 1 && step_ > 0 && needs_rebuild()) rebuild();  // on several threads: inside the job below
   for (Wall& w : m_.walls) w.force = {};
   const double inv_dt = 1.0 / m_.numerics.dt;
   const std::size_t n = m_.elements.size();
@@ -760,7 +766,6 @@ void Simulation::step() {
   const bool plate = m_.base_plate.enabled;
   const double dt_v = velocity_dt();
   const bool free_only = all_free();
-  const int nt = threads_used();
   if (nt == 1) {  // each slot adds its forces at once, in slot order
     Elements& e = m_.elements;
     weight(e.fx.data(), e.mass.data(), m_.gravity.x, n);  // (K15): gravity
@@ -771,8 +776,25 @@ void Simulation::step() {
   } else {  // the same sums, shared as thread_shares.hpp says
     if (shares_.threads != nt) share_work(nt);
     WorkerThreads& pool = workers(nt);
+    const double limit2 = step_ > 0 ? rebuild_limit2() : 0.0;
+    const bool test = step_ > 0 && limit2 >= 0.0;  // the rebuild test, each thread over its elements
+    if (step_ > 0 && !test) rebuild();
+    displaced_.assign(static_cast<std::size_t>(nt), 0);
     auto body = [&](int t) {  // thread t takes share t
       const std::size_t k = static_cast<std::size_t>(t);
+      if (test) {  // needs_rebuild() split over the threads (an OR of the same per-element tests)
+        const Elements& e = m_.elements;
+        const std::size_t b = shares_.first[k], end = shares_.first[k + 1];
+        displaced_[k] = any_displaced(e.x.data() + b, e.y.data() + b, x_ref_.data() + b, y_ref_.data() + b, limit2,
+                                      end - b);
+        pool.barrier();
+        std::uint8_t any = 0;
+        for (std::uint8_t d : displaced_) any |= d;
+        if (any) {
+          if (t == 0) rebuild();  // new slot lists and shares, for every thread after the barrier
+          pool.barrier();
+        }
+      }
       sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
       pool.barrier();
       gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order

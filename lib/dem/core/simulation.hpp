@@ -101,6 +101,7 @@ class Simulation {
   void rebuild();
   void apply_preloads();
   bool needs_rebuild() const;
+  double rebuild_limit2() const;  // the squared displacement that calls for a rebuild; < 0: rebuild now
   // The contact laws of slots [b, e): each writes its forces into its slot (and face_push_) and adds them
   // at once to its elements, in slot order: to every element (one thread, Shares = false), or only to the
   // elements that are not shared between threads (thread_shares.hpp; gather_forces sums the shared ones).
@@ -145,6 +146,7 @@ class Simulation {
     Workers& operator=(Workers&&) noexcept = default;
   } workers_;
   WorkerThreads& workers(int threads);
+  std::vector<std::uint8_t> displaced_;  // per thread: an element of its share moved far enough to rebuild
   std::vector<ElementPush> face_push_, face_wall_push_;  // this step's face forces on the elements
   int threads_ = 1;
   std::size_t min_per_thread_ = 4096;
