@@ -7,9 +7,6 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "dem/core/stability.hpp"
 
@@ -98,27 +95,6 @@ void weight(double* __restrict f, const double* __restrict m, double g, std::siz
   for (std::size_t i = 0; i < n; ++i) f[i] = m[i] * g;
 }
 
-/// Runs body(thread, threads) on `threads` threads (OpenMP), or body(0, 1) on the caller's. A
-/// `#pragma omp barrier` inside body synchronises the threads (and does nothing on one thread).
-template <class Body>
-void on_threads(int threads, Body&& body) {
-#ifdef _OPENMP
-  if (threads > 1) {
-#pragma omp parallel num_threads(threads)
-    body(omp_get_thread_num(), omp_get_num_threads());
-    return;
-  }
-#endif
-  (void)threads;
-  body(0, 1);
-}
-
-/// The part [b, e) of n items that thread t of nt takes.
-inline std::pair<std::size_t, std::size_t> share(std::size_t n, int t, int nt) {
-  return {n * static_cast<std::size_t>(t) / static_cast<std::size_t>(nt),
-          n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(nt)};
-}
-
 }  // namespace
 
 Simulation::Simulation(Model model) : m_(std::move(model)) {
@@ -179,12 +155,14 @@ void Simulation::apply_preloads() {
   if (threads_used() == 1) {
     sweep_scatter(0.0);  // onto the forces the elements hold
   } else {
-    on_threads(threads_used(), [&](int t, int nt) {
-      sweep_slots(0.0, t, nt);
-#pragma omp barrier
-      const auto [b, end] = share(e.size(), t, nt);
-      gather_forces(b, end, false);  // onto the forces the elements hold
-    });
+    if (shares_.threads != threads_used()) share_work(threads_used());
+    WorkerThreads& pool = workers(threads_used());
+    auto body = [&](int t) {
+      sweep_share(0.0, static_cast<std::size_t>(t), false);  // onto the forces the elements hold
+      pool.barrier();
+      gather_shared(static_cast<std::size_t>(t), false);
+    };
+    pool.run(body);
   }
   sum_wall_forces();
   preloading_ = false;
@@ -196,6 +174,13 @@ void Simulation::apply_preloads() {
 }
 
 bool Simulation::needs_rebuild() const {
+  const double limit2 = rebuild_limit2();
+  if (limit2 < 0.0) return true;
+  const Elements& e = m_.elements;
+  return any_displaced(e.x.data(), e.y.data(), x_ref_.data(), y_ref_.data(), limit2, e.size());
+}
+
+double Simulation::rebuild_limit2() const {
   // Rebuild once an element may have moved half the skin since the last rebuild, or its displacement
   // plus the walls' reaches the skin: d ≥ min(skin/2, skin − max_w). Compared on squared displacements
   // (no square root, a loop the compiler vectorises), with a 1e-12 relative margin so that the test never
@@ -206,10 +191,8 @@ bool Simulation::needs_rebuild() const {
     max_w = std::max(max_w, norm(m_.walls[k].a - wall_ref_[k]));
   }
   const double limit = std::min(0.5 * skin_, skin_ - max_w);
-  if (!(limit > 0.0)) return true;
-  const double limit2 = limit * limit * (1.0 - 1e-12);
-  const Elements& e = m_.elements;
-  return any_displaced(e.x.data(), e.y.data(), x_ref_.data(), y_ref_.data(), limit2, e.size());
+  if (!(limit > 0.0)) return -1.0;  // rebuild now
+  return limit * limit * (1.0 - 1e-12);
 }
 
 void Simulation::rebuild() {
@@ -273,39 +256,51 @@ void Simulation::index_contacts() {
   index_.build(m_.elements.size(), linear_pairs_, face_pairs_, linear_walls_, face_walls_);
   face_push_.resize(face_pairs_.size());
   face_wall_push_.resize(face_walls_.size());
+  shares_.threads = 0;
+  if (threads_used() > 1) share_work(threads_used());
+}
+
+WorkerThreads& Simulation::workers(int threads) {
+  if (!workers_.pool || workers_.pool->size() != threads) workers_.pool = std::make_unique<WorkerThreads>(threads);
+  return *workers_.pool;
+}
+
+void Simulation::share_work(int threads) {
+  shares_.build(threads, m_.elements.size(), linear_pairs_, face_pairs_, linear_walls_, face_walls_);
 }
 
 void Simulation::sweep_scatter(double inv_dt) {
-  sweep_linear_pairs<true>(inv_dt, 0, linear_pairs_.size());
-  sweep_face_pairs<true>(inv_dt, 0, face_pairs_.size());
-  sweep_linear_walls<true>(inv_dt, 0, linear_walls_.size());
-  sweep_face_walls<true>(inv_dt, 0, face_walls_.size());
+  sweep_linear_pairs<false>(inv_dt, 0, linear_pairs_.size());
+  sweep_face_pairs<false>(inv_dt, 0, face_pairs_.size());
+  sweep_linear_walls<false>(inv_dt, 0, linear_walls_.size());
+  sweep_face_walls<false>(inv_dt, 0, face_walls_.size());
 }
 
-void Simulation::sweep_slots(double inv_dt, int t, int nt) {
-  {
-    const auto [b, e] = share(linear_pairs_.size(), t, nt);
-    sweep_linear_pairs<false>(inv_dt, b, e);
+void Simulation::sweep_share(double inv_dt, std::size_t k, bool from_weight) {
+  const std::size_t b = shares_.first[k], end = shares_.first[k + 1];
+  if (from_weight) {  // (K15): gravity; the shared elements start from it in gather_forces
+    Elements& e = m_.elements;
+    weight(e.fx.data() + b, e.mass.data() + b, m_.gravity.x, end - b);
+    weight(e.fy.data() + b, e.mass.data() + b, m_.gravity.y, end - b);
+    std::fill(e.moment.begin() + static_cast<std::ptrdiff_t>(b), e.moment.begin() + static_cast<std::ptrdiff_t>(end), 0.0);
   }
-  {
-    const auto [b, e] = share(face_pairs_.size(), t, nt);
-    sweep_face_pairs<false>(inv_dt, b, e);
-  }
-  {
-    const auto [b, e] = share(linear_walls_.size(), t, nt);
-    sweep_linear_walls<false>(inv_dt, b, e);
-  }
-  {
-    const auto [b, e] = share(face_walls_.size(), t, nt);
-    sweep_face_walls<false>(inv_dt, b, e);
-  }
+  const auto& sl = shares_.slots;
+  sweep_linear_pairs<true>(inv_dt, sl[0][k], sl[0][k + 1]);
+  sweep_face_pairs<true>(inv_dt, sl[1][k], sl[1][k + 1]);
+  sweep_linear_walls<true>(inv_dt, sl[2][k], sl[2][k + 1]);
+  sweep_face_walls<true>(inv_dt, sl[3][k], sl[3][k + 1]);
+}
+
+void Simulation::gather_shared(std::size_t k, bool from_weight) {
+  const std::uint32_t b = shares_.shared_start[k], end = shares_.shared_start[k + 1];
+  gather_forces(shares_.shared_items.data() + b, end - b, from_weight);
 }
 
 // Each element sums what its slots computed, in the fixed order of the contact index, with the very
 // operations the one-thread sweeps performed (f_i += f, f_j −= f; K15, M12): the same sums bit for bit.
 // A slot that added nothing this step is skipped by adding −0 (x + (−0) = x) or subtracting +0 (x − 0 = x)
 // for every x, also x = −0, without a branch.
-void Simulation::gather_forces(std::size_t b, std::size_t end, bool from_weight) {
+void Simulation::gather_forces(const std::uint32_t* items, std::size_t count, bool from_weight) {
   Elements& e = m_.elements;
   const double* const mass = e.mass.data();
   const double* const radius = e.radius.data();
@@ -321,7 +316,8 @@ void Simulation::gather_forces(std::size_t b, std::size_t end, bool from_weight)
   const std::uint32_t* const os = index_.other_start.data();
   const std::uint32_t* const oi = index_.other_items.data();
   const Vec2 g = m_.gravity;
-  for (std::size_t k = b; k < end; ++k) {
+  for (std::size_t c = 0; c < count; ++c) {
+    const std::uint32_t k = items[c];
     double fx = from_weight ? mass[k] * g.x : fx_e[k];  // (K15): gravity, m g
     double fy = from_weight ? mass[k] * g.y : fy_e[k];
     double mom = from_weight ? 0.0 : moment[k];
@@ -435,7 +431,7 @@ void Simulation::start_linear(LinearSlot& s, double overlap, double du_n, double
   }
 }
 
-template <bool Scatter>
+template <bool Shares>
 void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
   const double* const x = e.x.data();
@@ -445,9 +441,10 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
   const double* const dx = e.dx.data();
   const double* const dy = e.dy.data();
   const double* const dphi = e.dphi.data();
-  [[maybe_unused]] double* const fx_e = e.fx.data();  // Scatter (local pointers: no reloads after stores)
-  [[maybe_unused]] double* const fy_e = e.fy.data();
-  [[maybe_unused]] double* const moment = e.moment.data();
+  double* const fx_e = e.fx.data();  // local pointers: no reloads after stores
+  double* const fy_e = e.fy.data();
+  double* const moment = e.moment.data();
+  [[maybe_unused]] const std::uint8_t* const shared = shares_.shared.data();
   const PairLaw* const laws = m_.laws.data();
   LinearSlot* const slots = linear_pairs_.data();
   for (std::size_t k = b; k < end; ++k) {
@@ -472,18 +469,29 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
       reset_slot(s);
       continue;
     }
-    s.f = f;  // gather_forces adds it to i and j (K15), or:
+    s.f = f;  // for outputs, and for gather_forces if an element is shared
     s.nx = nx;
     s.ny = ny;
-    if constexpr (Scatter) {
-      // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
-      const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;
+    // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
+    const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;
+    if constexpr (!Shares) {
       fx_e[i] += fx;
       fy_e[i] += fy;
       fx_e[j] -= fx;
       fy_e[j] -= fy;
       moment[i] -= radius[i] * f.fs;
       moment[j] -= radius[j] * f.fs;
+    } else {
+      if (!shared[i]) {
+        fx_e[i] += fx;
+        fy_e[i] += fy;
+        moment[i] -= radius[i] * f.fs;
+      }
+      if (!shared[j]) {
+        fx_e[j] -= fx;
+        fy_e[j] -= fy;
+        moment[j] -= radius[j] * f.fs;
+      }
     }
   }
 }
@@ -495,7 +503,7 @@ void Simulation::open_wall(std::uint32_t w) {
   index_contacts();  // the slot lists changed
 }
 
-template <bool Scatter>
+template <bool Shares>
 void Simulation::sweep_linear_walls(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
   for (std::size_t k = b; k < end; ++k) {
@@ -521,10 +529,10 @@ void Simulation::sweep_linear_walls(double inv_dt, std::size_t b, std::size_t en
       reset_slot(s);
       continue;
     }
-    s.f = f;  // gather_forces and sum_wall_forces add it
+    s.f = f;  // sum_wall_forces adds it, and gather_forces if the element is shared
     s.nx = nx;
     s.ny = ny;
-    if constexpr (Scatter) {
+    if (!Shares || !shares_.shared[i]) {
       e.fx[i] += -f.fn * nx + f.fs * ny;
       e.fy[i] += -f.fn * ny - f.fs * nx;
       e.moment[i] -= r * f.fs;
@@ -555,7 +563,7 @@ FaceConstants face_constants(const PairLaw& law, double r_i, double r_j, double 
   return c;
 }
 
-template <bool Scatter>
+template <bool Shares>
 void Simulation::sweep_face_pairs(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
   for (std::size_t n = b; n < end; ++n) {
@@ -608,18 +616,20 @@ void Simulation::sweep_face_pairs(double inv_dt, std::size_t b, std::size_t end)
     push.mi = -e.radius[i] * f.q + f.p_moment;
     push.mj = -e.radius[j] * f.q - f.p_moment;
     push.applied = 1;
-    if constexpr (Scatter) {
+    if (!Shares || !shares_.shared[i]) {
       e.fx[i] += push.fx;
       e.fy[i] += push.fy;
+      e.moment[i] += push.mi;
+    }
+    if (!Shares || !shares_.shared[j]) {
       e.fx[j] -= push.fx;
       e.fy[j] -= push.fy;
-      e.moment[i] += push.mi;
       e.moment[j] += push.mj;
     }
   }
 }
 
-template <bool Scatter>
+template <bool Shares>
 void Simulation::sweep_face_walls(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
   for (std::size_t n = b; n < end; ++n) {
@@ -665,7 +675,7 @@ void Simulation::sweep_face_walls(double inv_dt, std::size_t b, std::size_t end)
     push.fy = -f.p * ny - f.q * nx;
     push.mi = -r * f.q + f.p_moment;
     push.applied = 1;
-    if constexpr (Scatter) {
+    if (!Shares || !shares_.shared[i]) {
       e.fx[i] += push.fx;
       e.fy[i] += push.fy;
       e.moment[i] += push.mi;
@@ -752,7 +762,8 @@ void Simulation::move_walls() {
 }
 
 void Simulation::step() {
-  if (step_ > 0 && needs_rebuild()) rebuild();
+  const int nt = threads_used();
+  if (nt == 1 && step_ > 0 && needs_rebuild()) rebuild();  // on several threads: inside the job below
   for (Wall& w : m_.walls) w.force = {};
   const double inv_dt = 1.0 / m_.numerics.dt;
   const std::size_t n = m_.elements.size();
@@ -761,30 +772,51 @@ void Simulation::step() {
   const bool plate = m_.base_plate.enabled;
   const double dt_v = velocity_dt();
   const bool free_only = all_free();
-  const int nt = threads_used();
-  if (nt == 1) {  // each slot adds its forces at once, in slot order (the order gather_forces keeps)
+  if (nt == 1) {  // each slot adds its forces at once, in slot order
     Elements& e = m_.elements;
     weight(e.fx.data(), e.mass.data(), m_.gravity.x, n);  // (K15): gravity
     weight(e.fy.data(), e.mass.data(), m_.gravity.y, n);
     std::fill(e.moment.begin(), e.moment.end(), 0.0);
     sweep_scatter(inv_dt);
     if (!plate) integrate_range(0, n, dt_v, free_only);
-  } else {
-    on_threads(nt, [&](int t, int nt_) {
-      sweep_slots(inv_dt, t, nt_);  // every contact law (K5–K14, M3–M12) into its slot
-#pragma omp barrier
-      const auto [b, end] = share(n, t, nt_);
-      gather_forces(b, end, true);  // (K15): m g plus the contacts, per element in a fixed order
-      if (!plate) integrate_range(b, end, dt_v, free_only);  // (K17), (K18) or (K19)
-    });
+  } else {  // the same sums, shared as thread_shares.hpp says
+    if (shares_.threads != nt) share_work(nt);
+    WorkerThreads& pool = workers(nt);
+    const double limit2 = step_ > 0 ? rebuild_limit2() : 0.0;
+    const bool test = step_ > 0 && limit2 >= 0.0;  // the rebuild test, each thread over its elements
+    if (step_ > 0 && !test) rebuild();
+    displaced_.assign(static_cast<std::size_t>(nt), 0);
+    auto body = [&](int t) {  // thread t takes share t
+      const std::size_t k = static_cast<std::size_t>(t);
+      if (test) {  // needs_rebuild() split over the threads (an OR of the same per-element tests)
+        const Elements& e = m_.elements;
+        const std::size_t b = shares_.first[k], end = shares_.first[k + 1];
+        displaced_[k] = any_displaced(e.x.data() + b, e.y.data() + b, x_ref_.data() + b, y_ref_.data() + b, limit2,
+                                      end - b);
+        pool.barrier();
+        std::uint8_t any = 0;
+        for (std::uint8_t d : displaced_) any |= d;
+        if (any) {
+          if (t == 0) rebuild();  // new slot lists and shares, for every thread after the barrier
+          pool.barrier();
+        }
+      }
+      sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
+      pool.barrier();
+      gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
+      if (!plate) integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, free_only);  // (K17–K19)
+    };
+    pool.run(body);
   }
   sum_wall_forces();
   if (plate) {
     advance_base_plate();
-    on_threads(threads_used(), [&](int t, int nt) {
-      const auto [b, end] = share(n, t, nt);
-      integrate_range(b, end, dt_v, free_only);
-    });
+    if (nt == 1) {
+      integrate_range(0, n, dt_v, free_only);
+    } else {
+      auto body = [&](int t) { integrate_range(shares_.first[static_cast<std::size_t>(t)], shares_.first[static_cast<std::size_t>(t) + 1], dt_v, free_only); };
+      workers(nt).run(body);
+    }
   }
   move_walls();
   ++step_;

@@ -3,6 +3,7 @@
 // pseudo-rectangle elements: contact forces from the increments of the step (K5–K15, M3–M12),
 // velocities (K17), next increments (K18 or K19), positions.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include "dem/core/neighbour_search.hpp"
 #include "dem/core/spatial_order.hpp"
 #include "dem/core/stability.hpp"
+#include "dem/core/thread_shares.hpp"
+#include "dem/core/worker_threads.hpp"
 
 namespace dem {
 
@@ -83,9 +86,8 @@ class Simulation {
   /// The base plate's displacement and travel δ_B since the start (base_friction.hpp).
   const BasePlateTravel& plate_travel() const { return plate_travel_; }
 
-  /// Threads used inside a step (1: none). Results do not depend on it, bit for bit: every contact's
-  /// force is computed once into its slot, then each element sums its contacts in one fixed order
-  /// (contact_index.hpp), whatever thread computes what.
+  /// Threads used inside a step (1: none). Results do not depend on it, bit for bit: every element sums
+  /// its contacts in the one-thread order, whatever thread computes what (thread_shares.hpp).
   /// A thread takes at least `min_per_thread` elements (a step of fewer elements is faster on one
   /// thread: the threads' start and barrier cost more than they save); tests lower it to 1.
   void set_threads(int threads, std::size_t min_per_thread = 4096) {
@@ -111,19 +113,24 @@ class Simulation {
   void rebuild();
   void apply_preloads();
   bool needs_rebuild() const;
-  // The contact laws of slots [b, e): each writes its forces into its slot (and face_push_), never into
-  // the elements, so slots can be computed in any order and on any thread.
-  // Scatter (one thread): each slot also adds its forces to its elements at once, in slot order; this
-  // is the order gather_forces reproduces per element, so both give the same forces bit for bit.
-  template <bool Scatter> void sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t e);
-  template <bool Scatter> void sweep_face_pairs(double inv_dt, std::size_t b, std::size_t e);
-  template <bool Scatter> void sweep_linear_walls(double inv_dt, std::size_t b, std::size_t e);
-  template <bool Scatter> void sweep_face_walls(double inv_dt, std::size_t b, std::size_t e);
+  double rebuild_limit2() const;  // the squared displacement that calls for a rebuild; < 0: rebuild now
+  // The contact laws of slots [b, e): each writes its forces into its slot (and face_push_) and adds them
+  // at once to its elements, in slot order: to every element (one thread, Shares = false), or only to the
+  // elements that are not shared between threads (thread_shares.hpp; gather_forces sums the shared ones).
+  template <bool Shares> void sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t e);
+  template <bool Shares> void sweep_face_pairs(double inv_dt, std::size_t b, std::size_t e);
+  template <bool Shares> void sweep_linear_walls(double inv_dt, std::size_t b, std::size_t e);
+  template <bool Shares> void sweep_face_walls(double inv_dt, std::size_t b, std::size_t e);
   void sweep_scatter(double inv_dt);  // one thread: every slot, scattering into the elements
-  void gather_forces(std::size_t b, std::size_t e, bool from_weight);  // elements [b, e) sum their contacts
+  // Share `share` of a step on several threads: the slots its elements compute, scattered into its private
+  // elements (from m g if from_weight, else onto the forces they hold); then, after a barrier,
+  // gather_shared sums its shared elements' slots in the fixed order of the contact index.
+  void sweep_share(double inv_dt, std::size_t share, bool from_weight);
+  void gather_shared(std::size_t share, bool from_weight);
+  void gather_forces(const std::uint32_t* items, std::size_t count, bool from_weight);  // these elements
   void sum_wall_forces();
   void index_contacts();  // after every change of the slot lists (rebuild, restore)
-  void sweep_slots(double inv_dt, int thread, int threads);  // this thread's share of every slot list
+  void share_work(int threads);  // shares_ for this many threads (after index_contacts or set_threads)
   bool all_free() const;       // every element active and free
   double velocity_dt() const;  // the step of (K17): Δt, or Δt/2 at a staggered start
   void integrate_range(std::size_t b, std::size_t e, double dt_v, bool free_only);  // elements [b, e)
@@ -139,6 +146,19 @@ class Simulation {
   std::vector<LinearSlot> linear_fresh_;  // rebuild scratch (wall candidates), kept to reuse its capacity
   std::vector<FaceSlot> face_fresh_;
   ContactIndex index_;                        // each element's slots in the fixed summation order
+  ThreadShares shares_;                       // which thread computes what (built for threads_used())
+  // The threads of a step, started at the first step on several threads; a copy of the simulation
+  // starts its own.
+  struct Workers {
+    std::unique_ptr<WorkerThreads> pool;
+    Workers() = default;
+    Workers(const Workers&) {}
+    Workers& operator=(const Workers&) { return *this; }
+    Workers(Workers&&) noexcept = default;
+    Workers& operator=(Workers&&) noexcept = default;
+  } workers_;
+  WorkerThreads& workers(int threads);
+  std::vector<std::uint8_t> displaced_;  // per thread: an element of its share moved far enough to rebuild
   std::vector<ElementPush> face_push_, face_wall_push_;  // this step's face forces on the elements
   int threads_ = 1;
   std::size_t min_per_thread_ = 4096;

@@ -1,0 +1,92 @@
+#pragma once
+// How a step on several threads shares its work ("owner computes"; docs/model.md §1, "Determinism").
+// Thread t owns the elements [first[t], first[t+1]) and computes the contact slots whose element i it
+// owns: since every slot list is sorted by (i, j), a contiguous run of each list. A slot adds its forces
+// at once to each of its elements that is *private* — an element all of whose slots its owner computes —
+// so a private element receives its slots in slot order on one thread: the one-thread sweep's order. An
+// element with a slot that another thread computes (a j whose partner i belongs to an earlier range, i.e.
+// near the boundaries between the ranges) is *shared*: nobody adds to it while the slots are computed;
+// after a barrier its owner sums its slots in the fixed order of the contact index (contact_index.hpp),
+// which is again the one-thread order. So the forces are the same bit for bit for any number of threads.
+// The ranges are balanced by an estimate of each element's work (its integration and the slots it
+// computes). Rebuilt with the contact index; buffers are reused.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace dem {
+
+struct ThreadShares {
+  int threads = 0;                                 // 0: not built
+  std::vector<std::uint32_t> first;                // element ranges: threads + 1 boundaries
+  std::array<std::vector<std::size_t>, 4> slots;   // per slot list (linear pairs, face pairs, linear
+                                                   // walls, face walls): threads + 1 boundaries
+  std::vector<std::uint8_t> shared;                // per element: 1 if summed after the barrier
+  std::vector<std::uint32_t> shared_start, shared_items;  // per thread, its shared elements (ascending)
+  std::vector<std::uint64_t> work;                 // scratch
+
+  // Work estimates per element and per slot the element computes (a face contact costs several times
+  // a linear one: N segments, a square root, atan2 and hypot).
+  static constexpr std::uint64_t element_work = 1, linear_work = 4, face_work = 32;
+
+  template <class LinearSlots, class FaceSlots>
+  void build(int nt, std::size_t elements, const LinearSlots& linear_pairs, const FaceSlots& face_pairs,
+             const LinearSlots& linear_walls, const FaceSlots& face_walls) {
+    threads = nt < 1 ? 1 : nt;
+    const std::size_t n = static_cast<std::size_t>(threads);
+    work.assign(elements, element_work);
+    for (const auto& s : linear_pairs) work[s.i] += linear_work;
+    for (const auto& s : face_pairs) work[s.i] += face_work;
+    for (const auto& s : linear_walls) work[s.i] += linear_work;
+    for (const auto& s : face_walls) work[s.i] += face_work;
+    std::uint64_t total = 0;
+    for (std::uint64_t w : work) total += w;
+    first.assign(n + 1, 0);
+    std::size_t e = 0;
+    std::uint64_t done = 0;
+    for (std::size_t t = 1; t < n; ++t) {
+      const std::uint64_t target = total / n * t + total % n * t / n;  // total·t/n without overflow
+      while (e < elements && done + work[e] <= target) done += work[e++];
+      first[t] = static_cast<std::uint32_t>(e);
+    }
+    first[n] = static_cast<std::uint32_t>(elements);
+    split(linear_pairs, slots[0]);
+    split(face_pairs, slots[1]);
+    split(linear_walls, slots[2]);
+    split(face_walls, slots[3]);
+    shared.assign(elements, 0);
+    mark(linear_pairs, slots[0]);
+    mark(face_pairs, slots[1]);
+    shared_start.assign(n + 1, 0);
+    shared_items.clear();
+    for (std::size_t t = 0; t < n; ++t) {
+      for (std::uint32_t k = first[t]; k < first[t + 1]; ++k)
+        if (shared[k]) shared_items.push_back(k);
+      shared_start[t + 1] = static_cast<std::uint32_t>(shared_items.size());
+    }
+  }
+
+ private:
+  // The run of slots whose element i lies in each range (the list is sorted by i).
+  template <class Slots>
+  void split(const Slots& list, std::vector<std::size_t>& bounds) const {
+    const std::size_t n = first.size() - 1;
+    bounds.assign(n + 1, 0);
+    std::size_t k = 0;
+    for (std::size_t t = 1; t < n; ++t) {
+      while (k < list.size() && list[k].i < first[t]) ++k;
+      bounds[t] = k;
+    }
+    bounds[n] = list.size();
+  }
+  // A pair's j is shared if it lies outside the range of the thread that computes the slot.
+  template <class Slots>
+  void mark(const Slots& list, const std::vector<std::size_t>& bounds) {
+    const std::size_t n = first.size() - 1;
+    for (std::size_t t = 0; t < n; ++t)
+      for (std::size_t k = bounds[t]; k < bounds[t + 1]; ++k)
+        if (list[k].j < first[t] || list[k].j >= first[t + 1]) shared[list[k].j] = 1;
+  }
+};
+
+}  // namespace dem

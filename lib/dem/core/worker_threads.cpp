@@ -1,0 +1,81 @@
+#include "dem/core/worker_threads.hpp"
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
+namespace dem {
+
+namespace {
+
+inline void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  _mm_pause();
+#endif
+}
+
+// Spin iterations before sleeping: a few microseconds, about the imbalance of a balanced step; a partner
+// that takes longer is probably descheduled, and the core is better given back.
+constexpr int kSpins = 2000;
+
+/// Waits until a != old: a short spin, then sleeps.
+void await_change(const std::atomic<std::uint32_t>& a, std::uint32_t old) {
+  for (int k = 0; k < kSpins; ++k) {
+    if (a.load(std::memory_order_acquire) != old) return;
+    cpu_relax();
+  }
+  while (a.load(std::memory_order_acquire) == old) a.wait(old, std::memory_order_acquire);
+}
+
+}  // namespace
+
+WorkerThreads::WorkerThreads(int threads) : threads_(threads < 1 ? 1 : threads) {
+  workers_.reserve(static_cast<std::size_t>(threads_ - 1));
+  for (int t = 1; t < threads_; ++t) workers_.emplace_back([this, t] { work(t); });
+}
+
+WorkerThreads::~WorkerThreads() {
+  stop_ = true;
+  generation_.fetch_add(1, std::memory_order_release);
+  generation_.notify_all();
+  for (std::thread& w : workers_) w.join();
+}
+
+void WorkerThreads::work(int t) {
+  std::uint32_t seen = 0;
+  for (;;) {
+    await_change(generation_, seen);
+    seen = generation_.load(std::memory_order_acquire);
+    if (stop_) return;
+    job_(context_, t);
+    if (busy_.fetch_sub(1, std::memory_order_acq_rel) == 1) busy_.notify_all();
+  }
+}
+
+void WorkerThreads::run_job(void (*job)(void*, int), void* context) {
+  if (threads_ == 1) {
+    job(context, 0);
+    return;
+  }
+  job_ = job;
+  context_ = context;
+  busy_.store(static_cast<std::uint32_t>(threads_ - 1), std::memory_order_relaxed);
+  generation_.fetch_add(1, std::memory_order_release);
+  generation_.notify_all();
+  job(context, 0);
+  for (std::uint32_t left; (left = busy_.load(std::memory_order_acquire)) != 0;) await_change(busy_, left);
+}
+
+void WorkerThreads::barrier() {
+  if (threads_ == 1) return;
+  const std::uint32_t pass = passed_.load(std::memory_order_acquire);
+  if (arrived_.fetch_add(1, std::memory_order_acq_rel) + 1 == static_cast<std::uint32_t>(threads_)) {
+    arrived_.store(0, std::memory_order_relaxed);
+    passed_.fetch_add(1, std::memory_order_release);
+    passed_.notify_all();
+  } else {
+    await_change(passed_, pass);
+  }
+}
+
+}  // namespace dem
