@@ -13,6 +13,8 @@ import math
 import random
 import sys
 
+from grain_laws import GRAIN_LAWS
+
 # Scaled variants for the suite (bench/suite.py): make_settle_case.py ROWS COLS STEPS; the defaults give
 # the checked-in 10^4 case byte for byte.
 # --shuffle: the same disks at the same places, written as [[element]] tables in a random order (a fixed
@@ -61,34 +63,7 @@ print(f"""# Benchmark: a settle of 10^4 disks with linear contacts (bench/README
 title = "{f'Settle of {ROWS * COLS} disks (benchmark, scaled{", shuffled" if SHUFFLE else ""})' if SCALED else 'Settle of 10^4 disks (benchmark)'}"
 source = "bench/README.md"
 
-[physics]
-gravity = [0.0, -9.81]
-
-[[material]]
-name = "grain"
-density = 2650.0           # kg/m^3; thickness 1 m: m = 2650 pi r^2
-
-[[material]]
-name = "wall"
-
-[[contact]]
-between = ["grain", "grain"]
-law = "linear"
-kn = 1.0e6                 # N/m
-ks_ratio = 0.5
-friction = 0.5
-damping_ratio = 0.3        # with the reduced mass of the pair
-end_rule = "elastic"
-
-[[contact]]
-between = ["grain", "wall"]
-law = "linear"
-kn = 1.0e6
-ks_ratio = 0.5
-friction = 0.5
-damping_ratio = 0.3        # with the mass of the disk
-end_rule = "elastic"
-""")
+{GRAIN_LAWS}""")
 for name, a, b in [("floor", (0.0, 0.0), (width, 0.0)), ("right", (width, 0.0), (width, height)),
                    ("lid", (width, height), (0.0, height)), ("left", (0.0, height), (0.0, 0.0))]:
     print(f"""[[wall]]

@@ -23,6 +23,8 @@ LAMMPS (bench/lammps_input.py): side walls as `fix wall/gran xplane`, the floor 
 direction, as dem2d's segment walls), the gate unfixed after the first 6000 steps, removal by the box:
 atoms leaving its bottom, 10 mm below the floor, are lost (`thermo_modify lost ignore`)."""
 import math
+
+from grain_laws import GRAIN_LAWS
 import sys
 
 COLS, ROWS, STEPS = (int(a) for a in sys.argv[1:4]) if len(sys.argv) > 3 else (150, 200, 24000)
@@ -58,34 +60,7 @@ print(f"""# Benchmark: a silo discharge of {n} disks (bench/README.md, the suite
 title = "{f'Silo discharge of {n} disks (benchmark, scaled)' if SCALED else 'Silo discharge of 3x10^4 disks (benchmark)'}"
 source = "bench/README.md"
 
-[physics]
-gravity = [0.0, -9.81]
-
-[[material]]
-name = "grain"
-density = 2650.0           # kg/m^3; thickness 1 m: m = 2650 pi r^2
-
-[[material]]
-name = "wall"
-
-[[contact]]
-between = ["grain", "grain"]
-law = "linear"
-kn = 1.0e6                 # N/m
-ks_ratio = 0.5
-friction = 0.5
-damping_ratio = 0.3        # with the reduced mass of the pair
-end_rule = "elastic"
-
-[[contact]]
-between = ["grain", "wall"]
-law = "linear"
-kn = 1.0e6
-ks_ratio = 0.5
-friction = 0.5
-damping_ratio = 0.3        # with the mass of the disk
-end_rule = "elastic"
-""")
+{GRAIN_LAWS}""")
 for name, a, b in [("left", (0.0, height), (0.0, 0.0)), ("floor_left", (0.0, 0.0), (slit_l, 0.0)),
                    ("gate", (slit_l, 0.0), (slit_r, 0.0)), ("floor_right", (slit_r, 0.0), (width, 0.0)),
                    ("right", (width, 0.0), (width, height))]:
