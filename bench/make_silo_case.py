@@ -23,9 +23,9 @@ LAMMPS (bench/lammps_input.py): side walls as `fix wall/gran xplane`, the floor 
 direction, as dem2d's segment walls), the gate unfixed after the first 6000 steps, removal by the box:
 atoms leaving its bottom, 10 mm below the floor, are lost (`thermo_modify lost ignore`)."""
 import math
+import sys
 
 from grain_laws import GRAIN_LAWS
-import sys
 
 COLS, ROWS, STEPS = (int(a) for a in sys.argv[1:4]) if len(sys.argv) > 3 else (150, 200, 24000)
 SCALED = len(sys.argv) > 3
