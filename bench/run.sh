@@ -60,18 +60,11 @@ for r in $(seq "$REPS"); do
   for st in "${styles[@]}"; do run_lammps "$st" "$r"; done
 done
 
-python3 - "$OUT" "$REPS" "${styles[@]}" <<'PY'
-import json, re, sys, platform, os
+ROOT="$ROOT" python3 - "$OUT" "$REPS" "${styles[@]}" <<'PY'
+import json, re, sys, os
+sys.path.insert(0, os.path.join(os.environ["ROOT"], "bench"))
+from machine import cpu_model
 out, reps, styles = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
-
-def cpu_model():
-    try:
-        for line in open("/proc/cpuinfo"):
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 dem = []
 for r in range(1, reps + 1):

@@ -29,12 +29,13 @@ import argparse
 import json
 import math
 import os
-import platform
 import re
 import shutil
 import subprocess
 import sys
 import tempfile
+
+from machine import cpu_model
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -50,16 +51,6 @@ REORDER_EVERY = 10                 # numerics.reorder_every of its reordered run
 PRE = (100, 100, 2000, 400)  # rows, cols, steps, quick steps
 SILO_CASE = ROOT / "cases/silo/discharge_30k.toml"  # bench/make_silo_case.py's output
 SILO_QUICK = (150, 200, 8000)  # --quick: the same silo, 8000 steps (the gate opens after 6000)
-
-
-def cpu_model():
-    try:
-        for line in open("/proc/cpuinfo"):
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 
 def timed(cmd, cwd=None, env=None):
