@@ -128,3 +128,43 @@ TEST_CASE("A thread count below one means one thread, and small runs use fewer t
   sim.set_threads(4, n / 2);
   CHECK(sim.threads_used() == 2);
 }
+
+TEST_CASE("The kinematic blow-up test finds the same element on 1, 2 and 3 threads", "[threads][trust]") {
+  // 12 free disks far apart, no gravity, no contacts; their step increments v Δt relative to r = 1 cm
+  // are set by their velocities. max_step_fraction 0.25: (|Δx|/r)² above 0.0625 is an overstep.
+  auto run = [](const std::vector<double>& vx, int threads) {
+    dem::Model m = test::make_model({{"disk", 1000.0}}, 1e-3);
+    test::set_law(m, 0, 0, test::linear_law(1e6, 0.0, 0.0, 0.0, 0.0));
+    m.numerics.max_step_fraction = 0.25;
+    for (std::size_t k = 0; k < vx.size(); ++k) {
+      const std::size_t i = dem::add_element(m, dem::Shape::disk, 0, 0.01, {1.0 * static_cast<double>(k), 0.0});
+      m.elements.mass[i] = m.elements.inertia[i] = 1.0;
+      m.elements.inv_mass[i] = m.elements.inv_inertia[i] = 1.0;
+      m.elements.vx[i] = vx[i];
+    }
+    dem::Simulation sim(m);
+    sim.set_threads(threads, 1);
+    sim.step();
+    return sim.overstep();
+  };
+  const double nan = std::nan("");
+  // v Δt / r: 0.1 (below), 0.3 and 0.5 (above); two equal largest (the first counts), a NaN (counts first)
+  const std::vector<std::vector<double>> rows = {
+      {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1},         // none
+      {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 3, 1},         // element 10, in the last share
+      {1, 3, 1, 1, 1, 5, 1, 1, 5, 1, 3, 1},         // 5 and 8 equally fast: 5
+      {1, 3, 1, 1, 1, 5, 1, 1, 1, nan, 3, -7},      // the NaN at 9, although 11 moved farther
+      {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2.5000001}, // just above, the last element
+      {1, 1, 1, -nan, 1, 1, 1, 1, 1, 1, 1, 1},      // only a NaN (with its sign bit set)
+  };
+  const std::vector<std::size_t> expected = {dem::Simulation::Overstep::npos, 10, 5, 9, 11, 3};
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    CAPTURE(r);
+    for (int t = 1; t <= 3; ++t) {
+      CAPTURE(t);
+      const dem::Simulation::Overstep o = run(rows[r], t);
+      CHECK(o.index == expected[r]);
+      if (r == 1) CHECK_THAT(o.fraction2, Catch::Matchers::WithinRel(0.09, 1e-12));  // (3 · 1e-3 / 0.01)²
+    }
+  }
+}

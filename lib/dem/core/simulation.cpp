@@ -90,6 +90,35 @@ bool any_displaced(const double* __restrict x, const double* __restrict y, const
   }
   return (all_negative >> 63) == 0;
 }
+/// Whether (|Δx|/r)² = (dx² + dy²)/r² may exceed limit2 for some element: a prefilter for find_overstep
+/// without branches or comparisons, which the compiler vectorises. (|Δx|/r)² − limit2 has a clear sign bit
+/// unless it is below (or −0); a NaN (whatever its sign bit) or an infinity makes q·0 a NaN, whose exponent
+/// bits the second accumulator keeps (q·0 is ±0 for every finite q).
+bool may_overstep(const double* __restrict dx, const double* __restrict dy, const double* __restrict r,
+                  double limit2, std::size_t n) {
+  std::uint64_t all_negative = ~std::uint64_t{0}, not_finite = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double q = (dx[i] * dx[i] + dy[i] * dy[i]) / (r[i] * r[i]);
+    all_negative &= std::bit_cast<std::uint64_t>(q - limit2);
+    not_finite |= std::bit_cast<std::uint64_t>(q * 0.0);
+  }
+  return (all_negative >> 63) == 0 || (not_finite & 0x7fffffffffffffffULL) != 0;
+}
+/// The first NaN, else the first largest (the order in which oversteps of successive ranges combine).
+void take_worse(Simulation::Overstep& worst, const Simulation::Overstep& o) {
+  if (o.index == Simulation::Overstep::npos) return;
+  if (worst.index == Simulation::Overstep::npos || (!std::isnan(worst.fraction2) && !(o.fraction2 <= worst.fraction2))) worst = o;
+}
+/// The kinematic blow-up test over elements [b, end) (Simulation::overstep()).
+Simulation::Overstep find_overstep(const Elements& e, std::size_t b, std::size_t end, double limit2) {
+  Simulation::Overstep worst;
+  if (!may_overstep(e.dx.data() + b, e.dy.data() + b, e.radius.data() + b, limit2, end - b)) return worst;
+  for (std::size_t i = b; i < end; ++i) {
+    const double q = (e.dx[i] * e.dx[i] + e.dy[i] * e.dy[i]) / (e.radius[i] * e.radius[i]);
+    if (!(q <= limit2) && e.active[i]) take_worse(worst, {i, q});
+  }
+  return worst;
+}
 /// f = m g (K15).
 void weight(double* __restrict f, const double* __restrict m, double g, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) f[i] = m[i] * g;
@@ -772,13 +801,17 @@ void Simulation::step() {
   const bool plate = m_.base_plate.enabled;
   const double dt_v = velocity_dt();
   const bool free_only = all_free();
+  const double limit2_step = m_.numerics.max_step_fraction * m_.numerics.max_step_fraction;
   if (nt == 1) {  // each slot adds its forces at once, in slot order
     Elements& e = m_.elements;
     weight(e.fx.data(), e.mass.data(), m_.gravity.x, n);  // (K15): gravity
     weight(e.fy.data(), e.mass.data(), m_.gravity.y, n);
     std::fill(e.moment.begin(), e.moment.end(), 0.0);
     sweep_scatter(inv_dt);
-    if (!plate) integrate_range(0, n, dt_v, free_only);
+    if (!plate) {
+      integrate_range(0, n, dt_v, free_only);
+      oversteps_.assign(1, find_overstep(e, 0, n, limit2_step));
+    }
   } else {  // the same sums, shared as thread_shares.hpp says
     if (shares_.threads != nt) share_work(nt);
     WorkerThreads& pool = workers(nt);
@@ -786,6 +819,7 @@ void Simulation::step() {
     const bool test = step_ > 0 && limit2 >= 0.0;  // the rebuild test, each thread over its elements
     if (step_ > 0 && !test) rebuild();
     displaced_.assign(static_cast<std::size_t>(nt), 0);
+    oversteps_.assign(static_cast<std::size_t>(nt), Overstep{});
     auto body = [&](int t) {  // thread t takes share t
       const std::size_t k = static_cast<std::size_t>(t);
       if (test) {  // needs_rebuild() split over the threads (an OR of the same per-element tests)
@@ -804,7 +838,10 @@ void Simulation::step() {
       sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
       pool.barrier();
       gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
-      if (!plate) integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, free_only);  // (K17–K19)
+      if (!plate) {
+        integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, free_only);  // (K17–K19)
+        oversteps_[k] = find_overstep(m_.elements, shares_.first[k], shares_.first[k + 1], limit2_step);
+      }
     };
     pool.run(body);
   }
@@ -813,14 +850,26 @@ void Simulation::step() {
     advance_base_plate();
     if (nt == 1) {
       integrate_range(0, n, dt_v, free_only);
+      oversteps_.assign(1, find_overstep(m_.elements, 0, n, limit2_step));
     } else {
-      auto body = [&](int t) { integrate_range(shares_.first[static_cast<std::size_t>(t)], shares_.first[static_cast<std::size_t>(t) + 1], dt_v, free_only); };
+      oversteps_.assign(static_cast<std::size_t>(nt), Overstep{});
+      auto body = [&](int t) {
+        const std::size_t k = static_cast<std::size_t>(t);
+        integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, free_only);
+        oversteps_[k] = find_overstep(m_.elements, shares_.first[k], shares_.first[k + 1], limit2_step);
+      };
       workers(nt).run(body);
     }
   }
   move_walls();
   ++step_;
   time_ = static_cast<double>(step_) * m_.numerics.dt;
+}
+
+Simulation::Overstep Simulation::overstep() const {
+  Overstep worst;
+  for (const Overstep& o : oversteps_) take_worse(worst, o);  // shares in element order
+  return worst;
 }
 
 void Simulation::advance_base_plate() {

@@ -75,6 +75,17 @@ class Simulation {
   };
   BandForce wall_band_force(std::uint32_t w, double s0, double s1) const;
 
+  /// The run's kinematic blow-up test, made inside the step by each thread over its elements: of the
+  /// active elements whose increment of the last step exceeds numerics.max_step_fraction × radius, the one
+  /// that moved farthest relative to its radius (the first with the largest (|Δx|/r)², or the first whose
+  /// (|Δx|/r)² is NaN); index = npos if there is none.
+  struct Overstep {
+    static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+    std::size_t index = npos;
+    double fraction2 = 0.0;  // (|Δx|/r)² of that element
+  };
+  Overstep overstep() const;
+
   /// Opens wall w (Wall::open): its contacts are dropped, it forms no new ones (a silo's gate, discharge.hpp).
   void open_wall(std::uint32_t w);
 
@@ -159,6 +170,7 @@ class Simulation {
   } workers_;
   WorkerThreads& workers(int threads);
   std::vector<std::uint8_t> displaced_;  // per thread: an element of its share moved far enough to rebuild
+  std::vector<Overstep> oversteps_;      // per thread: the blow-up test over its share (overstep())
   std::vector<ElementPush> face_push_, face_wall_push_;  // this step's face forces on the elements
   int threads_ = 1;
   std::size_t min_per_thread_ = 4096;

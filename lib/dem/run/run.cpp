@@ -324,7 +324,6 @@ RunResult run_case(Case c, const RunOptions& opt) {
   loop.potential0 = sim.energies().potential;  // the blow-up criterion's zero of potential energy
   const double ratio = m.numerics.dt / limit;
   const double energy_factor = ratio < 1.0 ? std::max(4.0, 2.0 / (1.0 - ratio * ratio)) : 4.0;
-  const double step_fraction2 = m.numerics.max_step_fraction * m.numerics.max_step_fraction;
   const double gravity_norm = norm(m.gravity);
   // The run's state from a checkpoint: the Simulation's, and the loop's (probes, energy bound, settle
   // window).
@@ -448,28 +447,19 @@ RunResult run_case(Case c, const RunOptions& opt) {
       scale = energy_scale(m, e1.kinetic + e1.elastic);
       energy_limit = energy_factor * scale.total + 1e-300;
     }
-    {  // kinematic blow-up check: the largest increment of the step relative to the radius
+    // kinematic blow-up check: the largest increment of the step relative to the radius, found inside
+    // the step by each thread over its elements (Simulation::overstep)
+    if (const Simulation::Overstep o = sim.overstep(); o.index != Simulation::Overstep::npos) {
       const Elements& e = m.elements;
-      std::size_t worst = 0;
-      double worst2 = 0.0;
-      bool bad = false;
-      for (std::size_t i = 0; i < e.size(); ++i) {
-        const double d2 = (e.dx[i] * e.dx[i] + e.dy[i] * e.dy[i]) / (e.radius[i] * e.radius[i]);
-        if (!(d2 <= step_fraction2) && e.active[i]) {
-          if (!bad || !(d2 <= worst2)) worst = i, worst2 = d2;
-          bad = true;
-        }
-      }
-      if (bad) {
-        res.status = "blow-up";
-        res.message = fmt::format(
-            "stopped at t = {:.6g} s (step {}): element {} moved {:.4g} m in one step, {:.4g} of its radius "
-            "(numerics.max_step_fraction = {:.3g}: contacts would be missed) (the stability limit of this assembly "
-            "is {:.6g} s, dt = {:.6g} s)",
-            sim.time(), sim.steps(), sim.id_of(worst), std::hypot(e.dx[worst], e.dy[worst]), std::sqrt(worst2),
-            m.numerics.max_step_fraction, limit, m.numerics.dt);
-        break;
-      }
+      const std::size_t worst = o.index;
+      res.status = "blow-up";
+      res.message = fmt::format(
+          "stopped at t = {:.6g} s (step {}): element {} moved {:.4g} m in one step, {:.4g} of its radius "
+          "(numerics.max_step_fraction = {:.3g}: contacts would be missed) (the stability limit of this assembly "
+          "is {:.6g} s, dt = {:.6g} s)",
+          sim.time(), sim.steps(), sim.id_of(worst), std::hypot(e.dx[worst], e.dy[worst]), std::sqrt(o.fraction2),
+          m.numerics.max_step_fraction, limit, m.numerics.dt);
+      break;
     }
     // discharge (core/discharge.hpp): disks below the outlet line leave the run; a stalled arch loses
     // its keystone once no disk has left for keystone_after
