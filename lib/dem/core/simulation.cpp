@@ -71,13 +71,41 @@ inline double reduced_mass(double a, double b) { return a * b / (a + b); }
 /// One degree of freedom of free elements: v += (h f) w (K17, w = 1/m or 1/I), then the increment
 /// d = v Δt (K18) or d = (d + v Δt)/2 (K19), then x += d.
 template <bool K19>
-void integrate_free(double* __restrict v, const double* __restrict f, const double* __restrict w,
-                    double* __restrict d, double* __restrict x, double h, double dt, std::size_t n) {
+inline double advance_dof(double& v, double f, double w, double& d, double& x, double h, double dt) {
+  v += h * f * w;
+  d = K19 ? 0.5 * (d + v * dt) : v * dt;
+  x += d;
+  return d;
+}
+/// The blow-up prefilter of one element (may_overstep): bits whose sign bit is clear if (|Δx|/r)² may exceed
+/// the limit, and bits with a set exponent if it is not finite. limit2r = limit2 (1 − 1e-12), so that no
+/// division is needed: (dx² + dy²)/r² > limit2 implies dx² + dy² > limit2r · r² after rounding.
+inline void overstep_bits(double ddx, double ddy, double r, double limit2r, std::uint64_t& all_below,
+                          std::uint64_t& not_finite) {
+  const double d2 = ddx * ddx + ddy * ddy;
+  all_below &= std::bit_cast<std::uint64_t>(d2 - limit2r * (r * r));
+  not_finite |= std::bit_cast<std::uint64_t>(d2 * 0.0);
+}
+inline bool may_overstep(std::uint64_t all_below, std::uint64_t not_finite) {
+  return (all_below >> 63) == 0 || (not_finite & 0x7fffffffffffffffULL) != 0;
+}
+/// Free elements (K17–K19), the three degrees of freedom in one pass, with the blow-up prefilter on the
+/// increments just computed (the bytes pass the core once). The same operations per element as one
+/// degree of freedom at a time: bit-identical.
+template <bool K19>
+bool integrate_free(double* __restrict vx, double* __restrict vy, double* __restrict om, const double* __restrict fx,
+                    const double* __restrict fy, const double* __restrict mom, const double* __restrict wm,
+                    const double* __restrict wi, double* __restrict dx, double* __restrict dy, double* __restrict dphi,
+                    double* __restrict x, double* __restrict y, double* __restrict phi, const double* __restrict r,
+                    double h, double dt, double limit2r, std::size_t n) {
+  std::uint64_t all_below = ~std::uint64_t{0}, not_finite = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    v[i] += h * f[i] * w[i];
-    d[i] = K19 ? 0.5 * (d[i] + v[i] * dt) : v[i] * dt;
-    x[i] += d[i];
+    const double ddx = advance_dof<K19>(vx[i], fx[i], wm[i], dx[i], x[i], h, dt);
+    const double ddy = advance_dof<K19>(vy[i], fy[i], wm[i], dy[i], y[i], h, dt);
+    advance_dof<K19>(om[i], mom[i], wi[i], dphi[i], phi[i], h, dt);
+    overstep_bits(ddx, ddy, r[i], limit2r, all_below, not_finite);
   }
+  return may_overstep(all_below, not_finite);
 }
 /// Whether an element moved by at least √limit2 from its reference position: d² − limit2 ≥ 0 has a clear
 /// sign bit (an AND of the bit patterns, which the compiler vectorises; a comparison it does not).
@@ -90,38 +118,35 @@ bool any_displaced(const double* __restrict x, const double* __restrict y, const
   }
   return (all_negative >> 63) == 0;
 }
-/// Whether (|Δx|/r)² = (dx² + dy²)/r² may exceed limit2 for some element: a prefilter for find_overstep
-/// without branches or comparisons, which the compiler vectorises. (|Δx|/r)² − limit2 has a clear sign bit
-/// unless it is below (or −0); a NaN (whatever its sign bit) or an infinity makes q·0 a NaN, whose exponent
-/// bits the second accumulator keeps (q·0 is ±0 for every finite q).
+/// Whether (|Δx|/r)² may exceed limit2 for some element of [0, n): overstep_bits over the increments,
+/// without branches or comparisons, which the compiler vectorises.
 bool may_overstep(const double* __restrict dx, const double* __restrict dy, const double* __restrict r,
-                  double limit2, std::size_t n) {
-  std::uint64_t all_negative = ~std::uint64_t{0}, not_finite = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double q = (dx[i] * dx[i] + dy[i] * dy[i]) / (r[i] * r[i]);
-    all_negative &= std::bit_cast<std::uint64_t>(q - limit2);
-    not_finite |= std::bit_cast<std::uint64_t>(q * 0.0);
-  }
-  return (all_negative >> 63) == 0 || (not_finite & 0x7fffffffffffffffULL) != 0;
+                  double limit2r, std::size_t n) {
+  std::uint64_t all_below = ~std::uint64_t{0}, not_finite = 0;
+  for (std::size_t i = 0; i < n; ++i) overstep_bits(dx[i], dy[i], r[i], limit2r, all_below, not_finite);
+  return may_overstep(all_below, not_finite);
 }
 /// The first NaN, else the first largest (the order in which oversteps of successive ranges combine).
 void take_worse(Simulation::Overstep& worst, const Simulation::Overstep& o) {
   if (o.index == Simulation::Overstep::npos) return;
   if (worst.index == Simulation::Overstep::npos || (!std::isnan(worst.fraction2) && !(o.fraction2 <= worst.fraction2))) worst = o;
 }
-/// The kinematic blow-up test over elements [b, end) (Simulation::overstep()).
+/// The kinematic blow-up test over elements [b, end) (Simulation::overstep()), exact, element by element.
 Simulation::Overstep find_overstep(const Elements& e, std::size_t b, std::size_t end, double limit2) {
   Simulation::Overstep worst;
-  if (!may_overstep(e.dx.data() + b, e.dy.data() + b, e.radius.data() + b, limit2, end - b)) return worst;
   for (std::size_t i = b; i < end; ++i) {
     const double q = (e.dx[i] * e.dx[i] + e.dy[i] * e.dy[i]) / (e.radius[i] * e.radius[i]);
     if (!(q <= limit2) && e.active[i]) take_worse(worst, {i, q});
   }
   return worst;
 }
-/// f = m g (K15).
-void weight(double* __restrict f, const double* __restrict m, double g, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) f[i] = m[i] * g;
+inline double prefilter_limit(double limit2) { return limit2 * (1.0 - 1e-12); }
+/// The forces of a step start from the weight, f = m g (K15), both components in one pass.
+void weight(double* __restrict fx, double* __restrict fy, const double* __restrict m, Vec2 g, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    fx[i] = m[i] * g.x;
+    fy[i] = m[i] * g.y;
+  }
 }
 
 }  // namespace
@@ -309,8 +334,7 @@ void Simulation::sweep_share(double inv_dt, std::size_t k, bool from_weight) {
   const std::size_t b = shares_.first[k], end = shares_.first[k + 1];
   if (from_weight) {  // (K15): gravity; the shared elements start from it in gather_forces
     Elements& e = m_.elements;
-    weight(e.fx.data() + b, e.mass.data() + b, m_.gravity.x, end - b);
-    weight(e.fy.data() + b, e.mass.data() + b, m_.gravity.y, end - b);
+    weight(e.fx.data() + b, e.fy.data() + b, e.mass.data() + b, m_.gravity, end - b);
     std::fill(e.moment.begin() + static_cast<std::ptrdiff_t>(b), e.moment.begin() + static_cast<std::ptrdiff_t>(end), 0.0);
   }
   const auto& sl = shares_.slots;
@@ -734,18 +758,18 @@ double Simulation::velocity_dt() const {
   return (step_ == 0 && m_.numerics.velocity_start == VelocityStart::staggered) ? 0.5 * dt : dt;
 }
 
-void Simulation::integrate_range(std::size_t b, std::size_t end, double dt_v, bool free_only) {
+Simulation::Overstep Simulation::integrate_range(std::size_t b, std::size_t end, double dt_v, bool free_only,
+                                                 double limit2) {
   Elements& e = m_.elements;
   const double dt = m_.numerics.dt;
   const bool k19 = m_.numerics.integrator == Integrator::k19;
   if (free_only) {
-    auto dof = k19 ? integrate_free<true> : integrate_free<false>;
-    const std::size_t n = end - b;
-    dof(e.vx.data() + b, e.fx.data() + b, e.inv_mass.data() + b, e.dx.data() + b, e.x.data() + b, dt_v, dt, n);
-    dof(e.vy.data() + b, e.fy.data() + b, e.inv_mass.data() + b, e.dy.data() + b, e.y.data() + b, dt_v, dt, n);
-    dof(e.omega.data() + b, e.moment.data() + b, e.inv_inertia.data() + b, e.dphi.data() + b, e.phi.data() + b,
-        dt_v, dt, n);
-    return;
+    auto all = k19 ? integrate_free<true> : integrate_free<false>;
+    const bool may = all(e.vx.data() + b, e.vy.data() + b, e.omega.data() + b, e.fx.data() + b, e.fy.data() + b,
+                         e.moment.data() + b, e.inv_mass.data() + b, e.inv_inertia.data() + b, e.dx.data() + b,
+                         e.dy.data() + b, e.dphi.data() + b, e.x.data() + b, e.y.data() + b, e.phi.data() + b,
+                         e.radius.data() + b, dt_v, dt, prefilter_limit(limit2), end - b);
+    return may ? find_overstep(e, b, end, limit2) : Overstep{};
   }
   for (std::size_t i = b; i < end; ++i) {
     if (!e.active[i]) continue;
@@ -779,6 +803,8 @@ void Simulation::integrate_range(std::size_t b, std::size_t end, double dt_v, bo
     e.y[i] += e.dy[i];
     e.phi[i] += e.dphi[i];
   }
+  const bool may = may_overstep(e.dx.data() + b, e.dy.data() + b, e.radius.data() + b, prefilter_limit(limit2), end - b);
+  return may ? find_overstep(e, b, end, limit2) : Overstep{};
 }
 
 void Simulation::move_walls() {
@@ -804,13 +830,11 @@ void Simulation::step() {
   const double limit2_step = m_.numerics.max_step_fraction * m_.numerics.max_step_fraction;
   if (nt == 1) {  // each slot adds its forces at once, in slot order
     Elements& e = m_.elements;
-    weight(e.fx.data(), e.mass.data(), m_.gravity.x, n);  // (K15): gravity
-    weight(e.fy.data(), e.mass.data(), m_.gravity.y, n);
+    weight(e.fx.data(), e.fy.data(), e.mass.data(), m_.gravity, n);  // (K15): gravity
     std::fill(e.moment.begin(), e.moment.end(), 0.0);
     sweep_scatter(inv_dt);
     if (!plate) {
-      integrate_range(0, n, dt_v, free_only);
-      oversteps_.assign(1, find_overstep(e, 0, n, limit2_step));
+      oversteps_.assign(1, integrate_range(0, n, dt_v, free_only, limit2_step));
     }
   } else {  // the same sums, shared as thread_shares.hpp says
     if (shares_.threads != nt) share_work(nt);
@@ -839,8 +863,7 @@ void Simulation::step() {
       pool.barrier();
       gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
       if (!plate) {
-        integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, free_only);  // (K17–K19)
-        oversteps_[k] = find_overstep(m_.elements, shares_.first[k], shares_.first[k + 1], limit2_step);
+        oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, free_only, limit2_step);  // (K17–K19)
       }
     };
     pool.run(body);
@@ -849,14 +872,12 @@ void Simulation::step() {
   if (plate) {
     advance_base_plate();
     if (nt == 1) {
-      integrate_range(0, n, dt_v, free_only);
-      oversteps_.assign(1, find_overstep(m_.elements, 0, n, limit2_step));
+      oversteps_.assign(1, integrate_range(0, n, dt_v, free_only, limit2_step));
     } else {
       oversteps_.assign(static_cast<std::size_t>(nt), Overstep{});
       auto body = [&](int t) {
         const std::size_t k = static_cast<std::size_t>(t);
-        integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, free_only);
-        oversteps_[k] = find_overstep(m_.elements, shares_.first[k], shares_.first[k + 1], limit2_step);
+        oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, free_only, limit2_step);
       };
       workers(nt).run(body);
     }

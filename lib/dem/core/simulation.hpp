@@ -144,7 +144,8 @@ class Simulation {
   void share_work(int threads);  // shares_ for this many threads (after index_contacts or set_threads)
   bool all_free() const;       // every element active and free
   double velocity_dt() const;  // the step of (K17): Δt, or Δt/2 at a staggered start
-  void integrate_range(std::size_t b, std::size_t e, double dt_v, bool free_only);  // elements [b, e)
+  // (K17–K19) over elements [b, e), then the blow-up test over them (overstep())
+  Overstep integrate_range(std::size_t b, std::size_t e, double dt_v, bool free_only, double limit2);
   void move_walls();
   void advance_base_plate();  // base friction (M21) forces, plate travel
   void start_linear(LinearSlot& s, double overlap, double du_n, double du_s, double mass_i, double mass_j) const;
