@@ -7,26 +7,30 @@
 namespace dem {
 
 namespace {
-Vec2 slit_mid(const Model& m) {
-  const Wall& w = m.walls[static_cast<std::size_t>(m.discharge.slit)];
-  return (w.a + w.b) * 0.5;
-}
-Vec2 down(const Model& m) {
-  const double g = norm(m.gravity);
-  return g > 0.0 ? m.gravity * (1.0 / g) : Vec2{0.0, -1.0};
-}
+/// The outlet line: its point under the slit's mid-point and the direction of g, computed once per call
+/// (not per element: a norm and a division each).
+struct OutletLine {
+  Vec2 down, mid;
+  double depth = 0.0;
+  explicit OutletLine(const Model& m) : depth(m.discharge.outlet_depth) {
+    const Wall& w = m.walls[static_cast<std::size_t>(m.discharge.slit)];
+    mid = (w.a + w.b) * 0.5;
+    const double g = norm(m.gravity);
+    down = g > 0.0 ? m.gravity * (1.0 / g) : Vec2{0.0, -1.0};
+  }
+  double below(double x, double y) const { return dot(down, Vec2{x, y} - mid) - depth; }
+};
 }  // namespace
 
-double below_outlet(const Model& m, double x, double y) {
-  return dot(down(m), Vec2{x, y} - slit_mid(m)) - m.discharge.outlet_depth;
-}
+double below_outlet(const Model& m, double x, double y) { return OutletLine(m).below(x, y); }
 
 std::size_t remove_discharged(Model& m) {
   if (!m.discharge.enabled) return 0;
+  const OutletLine line(m);
   Elements& e = m.elements;
   std::size_t n = 0;
   for (std::size_t i = 0; i < e.size(); ++i)
-    if (e.active[i] && below_outlet(m, e.x[i], e.y[i]) > 0.0) {
+    if (e.active[i] && line.below(e.x[i], e.y[i]) > 0.0) {
       e.active[i] = 0;
       ++n;
     }
@@ -36,9 +40,10 @@ std::size_t remove_discharged(Model& m) {
 Discharged discharged(const Model& m) {
   Discharged d;
   if (!m.discharge.enabled) return d;
+  const OutletLine line(m);
   const Elements& e = m.elements;
   for (std::size_t i = 0; i < e.size(); ++i)
-    if (!e.active[i] && below_outlet(m, e.x[i], e.y[i]) > 0.0) {
+    if (!e.active[i] && line.below(e.x[i], e.y[i]) > 0.0) {
       ++d.count;
       d.mass += e.mass[i];
     }
@@ -48,13 +53,14 @@ Discharged discharged(const Model& m) {
 std::optional<std::size_t> keystone(const Model& m) {
   if (!m.discharge.enabled) return std::nullopt;
   const Wall& w = m.walls[static_cast<std::size_t>(m.discharge.slit)];
-  const Vec2 ab = w.b - w.a, mid = slit_mid(m);
+  const OutletLine line(m);
+  const Vec2 ab = w.b - w.a, mid = line.mid;
   const double len2 = dot(ab, ab);
   const Elements& e = m.elements;
   std::optional<std::size_t> best;
   double best_d2 = 0.0;
   for (std::size_t i = 0; i < e.size(); ++i) {
-    if (!e.active[i] || !(below_outlet(m, e.x[i], e.y[i]) <= 0.0)) continue;
+    if (!e.active[i] || !(line.below(e.x[i], e.y[i]) <= 0.0)) continue;
     const Vec2 c{e.x[i], e.y[i]};
     const double s = len2 > 0.0 ? dot(c - w.a, ab) / len2 : 0.0;
     if (s < 0.0 || s > 1.0) continue;  // not over the slit
