@@ -223,11 +223,16 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "Output folder (default runs/<case name>)");
   run->add_flag("-q,--quiet", quiet, "No progress or summary on the terminal");
   dem::RunOptions run_opt;
-  run_opt.threads = 1;  // no measured gain yet from a second thread (bench/README.md): opt in
+  // Default 1: every study already runs its runs side by side on one thread each, and on a machine shared
+  // with other work a second thread mostly waits for its partner (bench/README.md, "Threads inside a run").
+  run_opt.threads = 1;
+  const std::string cores = std::to_string(std::max(1u, std::thread::hardware_concurrency()));
   run->add_option("--threads", run_opt.threads,
-                  "Threads inside the run (default 1; runs of at least 8192 elements can use 2 or more); the "
-                  "results are the same bit for bit for any number")
-      ->check(CLI::PositiveNumber);
+                  "Threads inside the run: a number, or auto (this machine's cores, " + cores +
+                      ") (default 1; runs of at least 8192 elements can use 2 or more); the results are the same "
+                      "bit for bit for any number")
+      ->transform(CLI::Transformer({{"auto", cores}}))
+      ->check(CLI::Range(1, 1024));
   std::string restart, start_from;
   run->add_option("--checkpoint-every", run_opt.checkpoint_every,
                   "Write <out>/checkpoint.bin every N steps (replaced each time; SIGINT/SIGTERM always write one)")

@@ -48,6 +48,19 @@ bad = run("check", "cases/impact/disk_wall.toml", "--set", "numerics.integrator=
 if bad.returncode != 2 or "numerics.integrator" not in bad.stderr:
     fails.append(f"check with integrator K20: exit {bad.returncode}, stderr {bad.stderr!r} (expected 2 naming the key)")
 
+# --threads: a number or auto (the machine's cores); anything else is refused before the run, naming the option
+import os
+import tempfile
+with tempfile.TemporaryDirectory() as tmp:
+    ok = run("run", "cases/impact/disk_wall.toml", "-q", "--threads", "auto", "--out", os.path.join(tmp, "auto"))
+    if ok.returncode != 0:
+        fails.append(f"run --threads auto: exit {ok.returncode}, stderr {ok.stderr!r}")
+    for value in ("0", "zero", "-2"):
+        r = run("run", "cases/impact/disk_wall.toml", "-q", "--threads", value, "--out", os.path.join(tmp, value))
+        if r.returncode == 0 or "--threads" not in r.stderr or os.path.exists(os.path.join(tmp, value)):
+            fails.append(f"run --threads {value}: exit {r.returncode}, stderr {r.stderr!r} (expected a refusal naming "
+                         f"--threads, no output folder)")
+
 if fails:
     sys.exit("FAIL:\n  " + "\n  ".join(fails))
 print("OK:", v.stdout.strip())
