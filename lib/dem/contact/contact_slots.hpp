@@ -35,7 +35,7 @@ struct SlotPair {
 
 /// The linear element–element slots, one per candidate pair, in columns (bench/README.md, "Where the time
 /// and the bytes go"): the sweep reads the pair and `touching` of every candidate (9 bytes), the law and
-/// the state only of the pairs that touch. Slot k is (pair[k], touching[k], law[k], state[k]); a slot that
+/// the state only of the pairs whose cores overlap or that touched at the last step. Slot k is (pair[k], touching[k], law[k], state[k]); a slot that
 /// does not touch has a zero state. Sorted by (i, j) like every slot list.
 struct LinearPairSlots {
   std::vector<SlotPair> pair;
