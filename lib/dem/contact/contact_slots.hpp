@@ -2,7 +2,9 @@
 // Contact history storage. A slot exists for every candidate pair of the neighbour list (element–
 // element or element–wall); it carries the contact's history, so history survives rebuilds: a
 // rebuild merges the old, sorted slot list into the new, sorted candidate list by the key (i, j).
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "dem/contact/face_contact.hpp"
 #include "dem/contact/linear_contact.hpp"
@@ -17,6 +19,51 @@ struct LinearSlot {
   LinearContactHistory h;
   ContactForce f;              // forces of the last step (outputs)
   double nx = 0.0, ny = 0.0;   // normal of the last step, from i towards j
+};
+
+/// What a linear element–element contact keeps while it touches (zero otherwise): 64 bytes, one cache line.
+struct alignas(64) LinearContactState {
+  double eta_n = 0.0, eta_s = 0.0;  // dashpots of this pair [N·s/m]
+  LinearContactHistory h;
+  double fn = 0.0, fs = 0.0;        // forces of the last step (outputs), compression positive [N]
+  double nx = 0.0, ny = 0.0;        // normal of the last step, from i towards j
+};
+
+struct SlotPair {
+  std::uint32_t i = 0, j = 0;
+};
+
+/// The linear element–element slots, one per candidate pair, in columns (bench/README.md, "Where the time
+/// and the bytes go"): the sweep reads the pair and `touching` of every candidate (9 bytes), the law and
+/// the state only of the pairs whose cores overlap or that touched at the last step. Slot k is (pair[k], touching[k], law[k], state[k]); a slot that
+/// does not touch has a zero state. Sorted by (i, j) like every slot list.
+struct LinearPairSlots {
+  std::vector<SlotPair> pair;
+  std::vector<std::uint8_t> touching;
+  std::vector<std::int32_t> law;  // index into Model::laws
+  std::vector<LinearContactState> state;
+
+  std::size_t size() const { return pair.size(); }
+  std::size_t capacity() const { return pair.capacity(); }
+  void reserve(std::size_t n) {
+    pair.reserve(n), touching.reserve(n), law.reserve(n), state.reserve(n);
+  }
+  void resize(std::size_t n) {
+    pair.resize(n), touching.resize(n), law.resize(n), state.resize(n);
+  }
+  void clear() { resize(0); }
+  void move(std::size_t to, std::size_t from) {
+    pair[to] = pair[from], touching[to] = touching[from], law[to] = law[from], state[to] = state[from];
+  }
+  /// A fresh slot (no contact) for the pair (i, j) with this law.
+  void put_fresh(std::size_t k, std::uint32_t i, std::uint32_t j, std::int32_t l) {
+    pair[k] = {i, j}, touching[k] = 0, law[k] = l, state[k] = {};
+  }
+  /// Ends a contact: the slot stays (it is a candidate pair) but forgets its history.
+  void reset(std::size_t k) {
+    touching[k] = 0;
+    state[k] = {};
+  }
 };
 
 struct FaceSlot {

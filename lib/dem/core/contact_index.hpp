@@ -36,9 +36,9 @@ struct ContactIndex {
   static bool is_j(std::uint32_t entry) { return (entry & 1u) != 0; }
 
   /// Builds both rows from the slot lists (each sorted by (i, j)).
-  template <class LinearSlots, class FaceSlots>
-  void build(std::size_t elements, const LinearSlots& linear_pairs, const FaceSlots& face_pairs,
-             const LinearSlots& linear_walls, const FaceSlots& face_walls) {
+  template <class LinearPairs, class FaceSlots, class LinearWalls>
+  void build(std::size_t elements, const LinearPairs& linear_pairs, const FaceSlots& face_pairs,
+             const LinearWalls& linear_walls, const FaceSlots& face_walls) {
     if (linear_pairs.size() >= (std::size_t{1} << 31) ||
         face_pairs.size() + linear_walls.size() + face_walls.size() >= (std::size_t{1} << 29))
       throw std::length_error("contact index: too many contact slots");

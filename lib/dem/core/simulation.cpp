@@ -16,6 +16,37 @@ namespace {
 
 inline std::uint64_t key(std::uint32_t i, std::uint32_t j) { return (std::uint64_t{i} << 32) | j; }
 
+/// A slot list as merge() sees it: a vector of slots, or the columns of the linear pairs.
+template <class Slot>
+struct SlotVector {
+  using Item = Slot;
+  std::vector<Slot>& v;
+  std::size_t size() const { return v.size(); }
+  std::size_t capacity() const { return v.capacity(); }
+  void reserve(std::size_t n) { v.reserve(n); }
+  void resize(std::size_t n) { v.resize(n); }
+  std::uint64_t key_at(std::size_t k) const { return key(v[k].i, v[k].j); }
+  bool must_keep_at(std::size_t k) const { return must_keep(v[k]); }
+  void move(std::size_t to, std::size_t from) { v[to] = v[from]; }
+  void put(std::size_t to, const Slot& f) { v[to] = f; }
+};
+struct PairSeed {  // a fresh linear pair slot
+  std::uint32_t i = 0, j = 0;
+  std::int32_t law = -1;
+};
+struct PairColumns {
+  using Item = PairSeed;
+  LinearPairSlots& v;
+  std::size_t size() const { return v.size(); }
+  std::size_t capacity() const { return v.capacity(); }
+  void reserve(std::size_t n) { v.reserve(n); }
+  void resize(std::size_t n) { v.resize(n); }
+  std::uint64_t key_at(std::size_t k) const { return key(v.pair[k].i, v.pair[k].j); }
+  bool must_keep_at(std::size_t) const { return false; }  // a linear history ends with its candidate
+  void move(std::size_t to, std::size_t from) { v.move(to, from); }
+  void put(std::size_t to, const PairSeed& f) { v.put_fresh(to, f.i, f.j, f.law); }
+};
+
 /// Merges fresh candidates into the old slots (both sorted by (i, j)) in place, without a second list:
 /// make(fresh[k], slot) turns a candidate into a fresh slot, or skips it (false). The result is the
 /// list a merge into a new vector gives: every candidate in (i, j) order, with its old history if it had
@@ -23,18 +54,18 @@ inline std::uint64_t key(std::uint32_t i, std::uint32_t j) { return (std::uint64
 /// are compacted towards the front (a write never passes the read), then the candidates without an old
 /// slot are inserted from the back (the write stays ahead of the read by the inserts still to come).
 /// A list that grows gets 1/8 headroom, not the vector's doubling (bench/README.md, the bytes).
-template <class Slot, class Fresh, class Make>
-void merge(std::vector<Slot>& slots, const std::vector<Fresh>& fresh, Make&& make) {
+template <class List, class Fresh, class Make>
+void merge(List slots, const std::vector<Fresh>& fresh, Make&& make) {
   const std::size_t n = fresh.size();
-  Slot f;
+  typename List::Item f;
   std::size_t kept = 0, inserts = 0, c = 0;
   for (std::size_t o = 0; o < slots.size(); ++o) {
-    const std::uint64_t ko = key(slots[o].i, slots[o].j);
+    const std::uint64_t ko = slots.key_at(o);
     for (; c < n && key(fresh[c].i, fresh[c].j) < ko; ++c) inserts += make(fresh[c], f) ? 1 : 0;
     bool candidate = false;
     if (c < n && key(fresh[c].i, fresh[c].j) == ko) candidate = make(fresh[c++], f);
-    if (candidate || must_keep(slots[o])) {
-      if (kept != o) slots[kept] = slots[o];
+    if (candidate || slots.must_keep_at(o)) {
+      if (kept != o) slots.move(kept, o);
       ++kept;
     }
   }
@@ -46,9 +77,9 @@ void merge(std::vector<Slot>& slots, const std::vector<Fresh>& fresh, Make&& mak
   for (c = n; c-- > 0 && w > o;) {
     if (!make(fresh[c], f)) continue;
     const std::uint64_t kc = key(f.i, f.j);
-    while (o > 0 && key(slots[o - 1].i, slots[o - 1].j) > kc) slots[--w] = slots[--o];
-    if (o > 0 && key(slots[o - 1].i, slots[o - 1].j) == kc) slots[--w] = slots[--o];  // its old history
-    else slots[--w] = f;
+    while (o > 0 && slots.key_at(o - 1) > kc) --w, --o, slots.move(w, o);
+    if (o > 0 && slots.key_at(o - 1) == kc) --w, --o, slots.move(w, o);  // its old history
+    else slots.put(--w, f);
   }
 }
 
@@ -264,8 +295,8 @@ void Simulation::rebuild() {
       return true;
     };
   };
-  merge(linear_pairs_, candidates_, fresh_pair(LawKind::linear));
-  merge(face_pairs_, candidates_, fresh_pair(LawKind::face));
+  merge(PairColumns{linear_pairs_}, candidates_, fresh_pair(LawKind::linear));
+  merge(SlotVector<FaceSlot>{face_pairs_}, candidates_, fresh_pair(LawKind::face));
   // Element–wall candidates (few: the elements near a wall).
   std::vector<LinearSlot>& lin = linear_fresh_;
   std::vector<FaceSlot>& face = face_fresh_;
@@ -297,8 +328,8 @@ void Simulation::rebuild() {
     s = fresh;
     return true;
   };
-  merge(linear_walls_, lin, copy);
-  merge(face_walls_, face, copy);
+  merge(SlotVector<LinearSlot>{linear_walls_}, lin, copy);
+  merge(SlotVector<FaceSlot>{face_walls_}, face, copy);
   x_ref_ = e.x;
   y_ref_ = e.y;
   wall_ref_.resize(m_.walls.size());
@@ -307,7 +338,7 @@ void Simulation::rebuild() {
 }
 
 void Simulation::index_contacts() {
-  index_.build(m_.elements.size(), linear_pairs_, face_pairs_, linear_walls_, face_walls_);
+  index_.build(m_.elements.size(), linear_pairs_.pair, face_pairs_, linear_walls_, face_walls_);
   face_push_.resize(face_pairs_.size());
   face_wall_push_.resize(face_walls_.size());
   shares_.threads = 0;
@@ -320,7 +351,7 @@ WorkerThreads& Simulation::workers(int threads) {
 }
 
 void Simulation::share_work(int threads) {
-  shares_.build(threads, m_.elements.size(), linear_pairs_, face_pairs_, linear_walls_, face_walls_);
+  shares_.build(threads, m_.elements.size(), linear_pairs_.pair, face_pairs_, linear_walls_, face_walls_);
 }
 
 void Simulation::sweep_scatter(double inv_dt) {
@@ -360,7 +391,8 @@ void Simulation::gather_forces(const std::uint32_t* items, std::size_t count, bo
   double* const fx_e = e.fx.data();
   double* const fy_e = e.fy.data();
   double* const moment = e.moment.data();
-  const LinearSlot* const lp = linear_pairs_.data();
+  const std::uint8_t* const lp_touching = linear_pairs_.touching.data();
+  const LinearContactState* const lp = linear_pairs_.state.data();
   const LinearSlot* const lw = linear_walls_.data();
   const ElementPush* const fp = face_push_.data();
   const ElementPush* const fw = face_wall_push_.data();
@@ -377,10 +409,11 @@ void Simulation::gather_forces(const std::uint32_t* items, std::size_t count, bo
     const double r = radius[k];
     for (std::uint32_t n = ls[k]; n < ls[k + 1]; ++n) {
       const std::uint32_t entry = li[n];
-      const LinearSlot& s = lp[ContactIndex::linear_slot(entry)];
-      const bool on = s.touching != 0;
+      const std::uint32_t slot = ContactIndex::linear_slot(entry);
+      const LinearContactState& s = lp[slot];
+      const bool on = lp_touching[slot] != 0;
       // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
-      const double sfx = -s.f.fn * s.nx + s.f.fs * s.ny, sfy = -s.f.fn * s.ny - s.f.fs * s.nx;
+      const double sfx = -s.fn * s.nx + s.fs * s.ny, sfy = -s.fn * s.ny - s.fs * s.nx;
       if (ContactIndex::is_j(entry)) {
         fx -= on ? sfx : 0.0;
         fy -= on ? sfy : 0.0;
@@ -388,7 +421,7 @@ void Simulation::gather_forces(const std::uint32_t* items, std::size_t count, bo
         fx += on ? sfx : -0.0;
         fy += on ? sfy : -0.0;
       }
-      mom -= on ? r * s.f.fs : 0.0;
+      mom -= on ? r * s.fs : 0.0;
     }
     for (std::uint32_t n = os[k]; n < os[k + 1]; ++n) {
       const std::uint32_t entry = oi[n];
@@ -466,21 +499,20 @@ Dashpots linear_dashpots(const PairLaw& law, double mass_i, double mass_j) {
   return d;
 }
 
-void Simulation::start_linear(LinearSlot& s, double overlap, double du_n, double du_s, double mass_i,
-                              double mass_j) const {
-  const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
-  s.touching = 1;
-  s.h = {};
+void Simulation::start_linear(std::int32_t law_index, double overlap, double du_n, double du_s, double mass_i,
+                              double mass_j, double& eta_n, double& eta_s, LinearContactHistory& h) const {
+  const PairLaw& law = m_.laws[static_cast<std::size_t>(law_index)];
+  h = {};
   const Dashpots d = linear_dashpots(law, mass_i, mass_j);
-  s.eta_n = d.eta_n;
-  s.eta_s = d.eta_s;
+  eta_n = d.eta_n;
+  eta_s = d.eta_s;
   // Contacts present at the start, or formed with the overlap onset, start from the geometric
   // overlap: e_n = K_n δ after this step's increment is added (docs/references.md §1.4: e_0 = K x(0)).
   if (step_ == 0 || law.onset == Onset::overlap) {
-    s.h.en = law.linear.kn * (overlap - du_n);  // the face law's start, operation for operation (M18)
+    h.en = law.linear.kn * (overlap - du_n);  // the face law's start, operation for operation (M18)
     // The first increment of a plain start is the virtual v(0)Δt (docs/references.md §1.4): it drives the
     // dashpots, not the shear spring. A static preload is a real deformation: it loads the spring.
-    s.h.es = preloading_ ? 0.0 : -law.linear.ks * du_s;
+    h.es = preloading_ ? 0.0 : -law.linear.ks * du_s;
   }
 }
 
@@ -499,30 +531,38 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
   double* const moment = e.moment.data();
   [[maybe_unused]] const std::uint8_t* const shared = shares_.shared.data();
   const PairLaw* const laws = m_.laws.data();
-  LinearSlot* const slots = linear_pairs_.data();
+  const SlotPair* const pairs = linear_pairs_.pair.data();  // read for every candidate (hot)
+  std::uint8_t* const touching = linear_pairs_.touching.data();
+  const std::int32_t* const law_of = linear_pairs_.law.data();  // read for touching pairs only (cold)
+  LinearContactState* const state = linear_pairs_.state.data();
   for (std::size_t k = b; k < end; ++k) {
-    LinearSlot& s = slots[k];
-    const std::uint32_t i = s.i, j = s.j;
+    const std::uint32_t i = pairs[k].i, j = pairs[k].j;
     const double ddx = x[j] - x[i], ddy = y[j] - y[i];
     const double rs = radius[i] + radius[j];
     const double r2 = ddx * ddx + ddy * ddy;
     if (r2 > rs * rs || !active[i] || !active[j]) {  // (K3): not touching
-      if (s.touching) reset_slot(s);
+      if (touching[k]) linear_pairs_.reset(k);
       continue;
     }
+    LinearContactState& s = state[k];
     const double dist = std::sqrt(r2);
     const double nx = ddx / dist, ny = ddy / dist;  // cos α, sin α (K3): from i towards j
     const double ux = dx[i] - dx[j], uy = dy[i] - dy[j];
     const double du_n = ux * nx + uy * ny;                                      // (K5)
     const double du_s = -ux * ny + uy * nx + radius[i] * dphi[i] + radius[j] * dphi[j];
-    if (!s.touching) start_linear(s, rs - dist, du_n, du_s, e.mass[i], e.mass[j]);
-    const PairLaw& law = laws[static_cast<std::size_t>(s.law)];
+    const std::int32_t law_k = law_of[k];
+    if (!touching[k]) {
+      touching[k] = 1;
+      start_linear(law_k, rs - dist, du_n, du_s, e.mass[i], e.mass[j], s.eta_n, s.eta_s, s.h);
+    }
+    const PairLaw& law = laws[static_cast<std::size_t>(law_k)];
     const ContactForce f = linear_contact_force(law.linear, s.eta_n, s.eta_s, du_n, du_s, inv_dt, s.h);
     if (f.opened) {  // (K8): the contact ends; if the cores still overlap it forms anew next step
-      reset_slot(s);
+      linear_pairs_.reset(k);
       continue;
     }
-    s.f = f;  // for outputs, and for gather_forces if an element is shared
+    s.fn = f.fn;  // for outputs, and for gather_forces if an element is shared
+    s.fs = f.fs;
     s.nx = nx;
     s.ny = ny;
     // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
@@ -575,7 +615,10 @@ void Simulation::sweep_linear_walls(double inv_dt, std::size_t b, std::size_t en
     const double ux = e.dx[i] - w.increment.x, uy = e.dy[i] - w.increment.y;
     const double du_n = ux * nx + uy * ny;  // (K5) with the wall as element j, r_j = 0
     const double du_s = -ux * ny + uy * nx + r * e.dphi[i];
-    if (!s.touching) start_linear(s, r - dist, du_n, du_s, e.mass[i], 0.0);
+    if (!s.touching) {
+      s.touching = 1;
+      start_linear(s.law, r - dist, du_n, du_s, e.mass[i], 0.0, s.eta_n, s.eta_s, s.h);
+    }
     const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
     const ContactForce f = linear_contact_force(law.linear, s.eta_n, s.eta_s, du_n, du_s, inv_dt, s.h);
     if (f.opened) {
@@ -912,11 +955,11 @@ Energies Simulation::energies() const {
                   0.5 * e.inertia[i] * e.omega[i] * e.omega[i];
     en.potential -= e.mass[i] * (m_.gravity.x * e.x[i] + m_.gravity.y * e.y[i]);
   }
-  auto lin = [&](const LinearSlot& s) {
-    if (!s.touching) return;
-    const LinearSpringDashpot& l = m_.laws[static_cast<std::size_t>(s.law)].linear;
-    if (l.kn > 0.0) en.elastic += 0.5 * s.h.en * s.h.en / l.kn;
-    if (l.ks > 0.0) en.elastic += 0.5 * s.h.es * s.h.es / l.ks;
+  auto lin = [&](std::uint8_t touching, std::int32_t law, const LinearContactHistory& h) {
+    if (!touching) return;
+    const LinearSpringDashpot& l = m_.laws[static_cast<std::size_t>(law)].linear;
+    if (l.kn > 0.0) en.elastic += 0.5 * h.en * h.en / l.kn;
+    if (l.ks > 0.0) en.elastic += 0.5 * h.es * h.es / l.ks;
   };
   auto face = [&](const FaceSlot& s) {
     if (!s.touching) return;
@@ -928,8 +971,9 @@ Energies Simulation::energies() const {
       if (s.c.ks > 0.0) en.elastic += 0.5 * g.qe * g.qe / s.c.ks;
     }
   };
-  for (const auto& s : linear_pairs_) lin(s);
-  for (const auto& s : linear_walls_) lin(s);
+  const LinearPairSlots& lp = linear_pairs_;
+  for (std::size_t k = 0; k < lp.size(); ++k) lin(lp.touching[k], lp.law[k], lp.state[k].h);
+  for (const auto& s : linear_walls_) lin(s.touching, s.law, s.h);
   for (const auto& s : face_pairs_) face(s);
   for (const auto& s : face_walls_) face(s);
   return en;
@@ -937,8 +981,12 @@ Energies Simulation::energies() const {
 
 std::vector<ContactView> Simulation::contacts() const {
   std::vector<ContactView> out;
-  for (const auto& s : linear_pairs_)
-    if (s.touching) out.push_back({s.i, s.j, false, s.nx, s.ny, s.f.fn, s.f.fs, 1});
+  const LinearPairSlots& lp = linear_pairs_;
+  for (std::size_t k = 0; k < lp.size(); ++k) {
+    if (!lp.touching[k]) continue;
+    const LinearContactState& s = lp.state[k];
+    out.push_back({lp.pair[k].i, lp.pair[k].j, false, s.nx, s.ny, s.fn, s.fs, 1});
+  }
   for (const auto& s : face_pairs_)
     if (s.touching) out.push_back({s.i, s.j, false, s.nx, s.ny, s.f.p, s.f.q, s.f.links});
   for (const auto& s : linear_walls_)
@@ -972,7 +1020,7 @@ Simulation::BandForce Simulation::wall_band_force(std::uint32_t w, double s0, do
 
 std::size_t Simulation::contact_count() const {
   std::size_t n = 0;
-  for (const auto& s : linear_pairs_) n += s.touching;
+  for (std::uint8_t t : linear_pairs_.touching) n += t;
   for (const auto& s : face_pairs_) n += s.touching;
   for (const auto& s : linear_walls_) n += s.touching;
   for (const auto& s : face_walls_) n += s.touching;
@@ -987,7 +1035,8 @@ std::pair<double, std::size_t> Simulation::contact_force_sum() const {
     sum += std::hypot(fn, fs);
     ++n;
   };
-  for (const auto& s : linear_pairs_) add(s.touching, s.f.fn, s.f.fs);
+  for (std::size_t k = 0; k < linear_pairs_.size(); ++k)
+    add(linear_pairs_.touching[k], linear_pairs_.state[k].fn, linear_pairs_.state[k].fs);
   for (const auto& s : linear_walls_) add(s.touching, s.f.fn, s.f.fs);
   for (const auto& s : face_pairs_) add(s.touching, s.f.p, s.f.q);
   for (const auto& s : face_walls_) add(s.touching, s.f.p, s.f.q);
@@ -1001,8 +1050,18 @@ ContactView Simulation::contact(std::uint32_t i, std::uint32_t j, bool wall) con
                                [](const auto& s, std::uint64_t k) { return key(s.i, s.j) < k; });
     return (it != slots.end() && it->i == i && it->j == j && it->touching) ? &*it : nullptr;
   };
-  if (const auto* s = find(wall ? linear_walls_ : linear_pairs_))
-    return {i, j, wall, s->nx, s->ny, s->f.fn, s->f.fs, 1};
+  if (wall) {
+    if (const auto* s = find(linear_walls_)) return {i, j, wall, s->nx, s->ny, s->f.fn, s->f.fs, 1};
+  } else {
+    const std::vector<SlotPair>& p = linear_pairs_.pair;
+    const auto it = std::lower_bound(p.begin(), p.end(), key(i, j),
+                                     [](const SlotPair& s, std::uint64_t k) { return key(s.i, s.j) < k; });
+    const std::size_t k = static_cast<std::size_t>(it - p.begin());
+    if (it != p.end() && it->i == i && it->j == j && linear_pairs_.touching[k]) {
+      const LinearContactState& s = linear_pairs_.state[k];
+      return {i, j, wall, s.nx, s.ny, s.fn, s.fs, 1};
+    }
+  }
   if (const auto* s = find(wall ? face_walls_ : face_pairs_))
     return {i, j, wall, s->nx, s->ny, s->f.p, s->f.q, s->f.links};
   return {i, j, wall, 0.0, 0.0, 0.0, 0.0, 0};

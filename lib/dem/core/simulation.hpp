@@ -148,12 +148,15 @@ class Simulation {
   Overstep integrate_range(std::size_t b, std::size_t e, double dt_v, bool free_only, double limit2);
   void move_walls();
   void advance_base_plate();  // base friction (M21) forces, plate travel
-  void start_linear(LinearSlot& s, double overlap, double du_n, double du_s, double mass_i, double mass_j) const;
+  // A linear contact forms: its dashpots and the history it starts from.
+  void start_linear(std::int32_t law, double overlap, double du_n, double du_s, double mass_i, double mass_j,
+                    double& eta_n, double& eta_s, LinearContactHistory& h) const;
 
   Model m_;
   NeighbourSearch search_;
   std::vector<CandidatePair> candidates_;
-  std::vector<LinearSlot> linear_pairs_, linear_walls_;  // merged in place at a rebuild (no second list)
+  LinearPairSlots linear_pairs_;           // merged in place at a rebuild (no second list)
+  std::vector<LinearSlot> linear_walls_;
   std::vector<FaceSlot> face_pairs_, face_walls_;
   std::vector<LinearSlot> linear_fresh_;  // rebuild scratch (wall candidates), kept to reuse its capacity
   std::vector<FaceSlot> face_fresh_;

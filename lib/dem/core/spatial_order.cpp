@@ -97,18 +97,32 @@ void permute_elements(Elements& e, const std::vector<std::uint32_t>& order, Perm
   permute(e.id, order, s.u32);
 }
 
-void renumber_pair_slots(std::vector<LinearSlot>& slots, const std::vector<std::uint32_t>& new_of_old) {
-  for (LinearSlot& s : slots) {
-    std::uint32_t i = new_of_old[s.i], j = new_of_old[s.j];
+void renumber_pair_slots(LinearPairSlots& slots, const std::vector<std::uint32_t>& new_of_old) {
+  const std::size_t n = slots.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    SlotPair& p = slots.pair[k];
+    std::uint32_t i = new_of_old[p.i], j = new_of_old[p.j];
     if (i > j) {  // turned round: the normal from the new i towards the new j is the old one reversed
       std::swap(i, j);
-      s.nx = -s.nx;
-      s.ny = -s.ny;
+      slots.state[k].nx = -slots.state[k].nx;
+      slots.state[k].ny = -slots.state[k].ny;
     }
-    s.i = i;
-    s.j = j;
+    p = {i, j};
   }
-  sort_slots(slots);
+  // sorted by (i, j): every column takes the order of the pairs (the keys are unique)
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), std::uint32_t{0});
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return pair_key(slots.pair[a].i, slots.pair[a].j) < pair_key(slots.pair[b].i, slots.pair[b].j);
+  });
+  std::vector<SlotPair> p;
+  std::vector<std::uint8_t> t;
+  std::vector<std::int32_t> l;
+  std::vector<LinearContactState> st;
+  permute(slots.pair, order, p);
+  permute(slots.touching, order, t);
+  permute(slots.law, order, l);
+  permute(slots.state, order, st);
 }
 
 template <class Slot>

@@ -47,7 +47,7 @@ void permute_elements(Elements& e, const std::vector<std::uint32_t>& order, Perm
 /// (e_n, e_s), the dashpots and the forces (f_n, f_s) stay, since the linear law is symmetric in i and j
 /// (with n → −n and t → −t: Δu_n, Δu_s, f_n, f_s and the moments r f_s are unchanged, (K5)–(K15)).
 /// Then the slots are sorted by (i, j), the order of the sweep and of the rebuild's merge.
-void renumber_pair_slots(std::vector<LinearSlot>& slots, const std::vector<std::uint32_t>& new_of_old);
+void renumber_pair_slots(LinearPairSlots& slots, const std::vector<std::uint32_t>& new_of_old);
 
 /// Element–wall slots: i → new_of_old[i] (j is a wall), sorted by (i, j).
 template <class Slot>

@@ -29,9 +29,9 @@ struct ThreadShares {
   // a linear one: N segments, a square root, atan2 and hypot).
   static constexpr std::uint64_t element_work = 1, linear_work = 4, face_work = 32;
 
-  template <class LinearSlots, class FaceSlots>
-  void build(int nt, std::size_t elements, const LinearSlots& linear_pairs, const FaceSlots& face_pairs,
-             const LinearSlots& linear_walls, const FaceSlots& face_walls) {
+  template <class LinearPairs, class FaceSlots, class LinearWalls>
+  void build(int nt, std::size_t elements, const LinearPairs& linear_pairs, const FaceSlots& face_pairs,
+             const LinearWalls& linear_walls, const FaceSlots& face_walls) {
     threads = nt < 1 ? 1 : nt;
     const std::size_t n = static_cast<std::size_t>(threads);
     work.assign(elements, element_work);

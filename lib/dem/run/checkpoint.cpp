@@ -18,6 +18,8 @@ constexpr char kMagic[] = "DEM2D-CHECKPOINT\n";
 // A new field in one of these types must be added to write_state / read_state below; these
 // assertions fail the build until it is (the sizes are those of the fields listed there).
 static_assert(sizeof(LinearSlot) == 88, "LinearSlot changed: add the new field to the checkpoint (checkpoint.cpp)");
+static_assert(sizeof(LinearContactState) == 64 && sizeof(SlotPair) == 8 && sizeof(LinearPairSlots) == 4 * sizeof(std::vector<double>),
+              "LinearPairSlots changed: add the new field to the checkpoint (checkpoint.cpp)");
 static_assert(sizeof(SegmentState) == 32 && sizeof(FaceConstants) == 48 && sizeof(FaceForce) == 32 &&
                   sizeof(FaceHistory) == 24 + 32 * kMaxSegments &&
                   sizeof(FaceSlot) == 16 + 48 + sizeof(FaceHistory) + 32 + 16,
@@ -111,6 +113,29 @@ void get_slot(Reader& r, FaceSlot& s) {
   s.f.p = r.get<double>(), s.f.q = r.get<double>(), s.f.p_moment = r.get<double>(), s.f.links = r.get<int>();
   s.f.any_tensile = r.get<bool>(), s.nx = r.get<double>(), s.ny = r.get<double>();
 }
+// The linear element–element slots: the fields of a LinearSlot but ContactForce::opened (always false in
+// a stored slot: a contact that opens is reset at once).
+void put_slots(Writer& w, const LinearPairSlots& v) {
+  w.put<std::uint64_t>(v.size());
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const LinearContactState& s = v.state[k];
+    w.put(v.pair[k].i), w.put(v.pair[k].j), w.put(v.law[k]), w.put(v.touching[k]), w.put(s.eta_n), w.put(s.eta_s);
+    w.put(s.h.en), w.put(s.h.es), w.put(s.fn), w.put(s.fs), w.put(s.nx), w.put(s.ny);
+  }
+}
+void get_slots(Reader& r, LinearPairSlots& v) {
+  const auto n = r.get<std::uint64_t>();
+  if (n > r.in.size()) throw OutputError(fmt::format("{}: truncated checkpoint", r.what));
+  v.clear();
+  v.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    LinearContactState& s = v.state[k];
+    v.pair[k].i = r.get<std::uint32_t>(), v.pair[k].j = r.get<std::uint32_t>(), v.law[k] = r.get<std::int32_t>();
+    v.touching[k] = r.get<std::uint8_t>(), s.eta_n = r.get<double>(), s.eta_s = r.get<double>();
+    s.h.en = r.get<double>(), s.h.es = r.get<double>(), s.fn = r.get<double>(), s.fs = r.get<double>();
+    s.nx = r.get<double>(), s.ny = r.get<double>();
+  }
+}
 template <class Slot>
 void put_slots(Writer& w, const std::vector<Slot>& v) {
   w.put<std::uint64_t>(v.size());
@@ -198,6 +223,14 @@ struct SimulationAccess {
     };
     drop_open(sim.linear_walls_);
     drop_open(sim.face_walls_);
+    for (std::size_t k = 0; k < sim.linear_pairs_.size(); ++k) {
+      const SlotPair p = sim.linear_pairs_.pair[k];
+      const std::int32_t law = m.law_index(e.material[p.i], e.material[p.j]);
+      if (law < 0 || m.laws[static_cast<std::size_t>(law)].kind != LawKind::linear)
+        throw CaseError(fmt::format("restart: element {} and element {}: the new case has no linear contact law for this pair",
+                                    sim.id_of(p.i), sim.id_of(p.j)));
+      sim.linear_pairs_.law[k] = law;
+    }
     auto relaw = [&](auto& slots, bool wall, LawKind kind) {
       for (auto& s : slots) {
         const std::int32_t mj = wall ? m.walls[s.j].material : e.material[s.j];
@@ -208,7 +241,6 @@ struct SimulationAccess {
         s.law = law;
       }
     };
-    relaw(sim.linear_pairs_, false, LawKind::linear);
     relaw(sim.linear_walls_, true, LawKind::linear);
     relaw(sim.face_pairs_, false, LawKind::face);
     relaw(sim.face_walls_, true, LawKind::face);

@@ -22,7 +22,8 @@
 
 namespace dem {
 
-inline constexpr std::uint32_t kCheckpointVersion = 3;  // 2: the run loop's discharge state; 3: element ids (order)
+inline constexpr std::uint32_t kCheckpointVersion = 4;  // 2: the run loop's discharge state; 3: element ids (order);
+                                                          // 4: linear pair slots without ContactForce::opened
 
 struct Checkpoint {
   std::string case_hash, case_path;
