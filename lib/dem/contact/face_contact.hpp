@@ -176,7 +176,11 @@ inline Trig trig(double t1, double t2) { return {std::sin(t1), std::cos(t1), std
   const bool healing = law.healing;
   const bool first = h.geometric_start != 0;
 
-  FaceForce f;
+  // The resultants in scalars (registers), put together once at the end: a FaceForce built field by
+  // field in memory and copied whole stalls the copy's wide loads on the narrow stores.
+  double sum_p = 0.0, sum_q = 0.0, sum_moment = 0.0;
+  int links = 0;
+  std::uint8_t any_intact = 0;  // a linked segment is intact (keeps σ_t)
   for (int i = 0; i < n; ++i) {
     SegmentState& s = h.seg[static_cast<std::size_t>(i)];
     const double xi = xis[i];
@@ -212,13 +216,19 @@ inline Trig trig(double t1, double t2) { return {std::sin(t1), std::cos(t1), std
       qd = 0.0;
     }
     const double p = s.pe + pd, q = s.qe + qd;
-    f.p += p;
-    f.q += q;
-    f.p_moment += a * xi * p;
-    ++f.links;
-    f.any_tensile = f.any_tensile || (intact && any_tension);
+    sum_p += p;
+    sum_q += q;
+    sum_moment += a * xi * p;
+    ++links;
+    any_intact |= s.intact;
   }
   if (first) h.geometric_start = 0;
+  FaceForce f;
+  f.p = sum_p;
+  f.q = sum_q;
+  f.p_moment = sum_moment;
+  f.links = links;
+  f.any_tensile = any_tension && any_intact != 0;  // a linked segment with σ_t > 0
   return f;
 }
 
