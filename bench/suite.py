@@ -2,7 +2,7 @@
 """The speed suite (bench/README.md): dem2d side by side with LAMMPS (Debian `lammps`, binary `lmp`) in one
 interleaved run. Not part of ctest: speed is measured here, never in tests.
 
-    python3 bench/suite.py [--quick] [--big] [--reps N] [--out DIR] [--dem2d LABEL=PATH ...] [--lmp lmp]
+    python3 bench/suite.py [--quick] [--big] [--reps N] [--out DIR] [--dem2d LABEL=PATH ...] [--lmp lmp] [--only-pre]
 
 Cases (written into the output folder):
   settle  bench/make_settle_case.py scaled: 10^3 disks x 10^4 steps, 10^4 x 10^4 (the bench case),
@@ -170,6 +170,7 @@ def main():
     ap.add_argument("--dem2d", action="append", default=[], help="LABEL=PATH (default dem2d=build/app/dem2d)")
     ap.add_argument("--lmp", default="lmp")
     ap.add_argument("--no-pre", action="store_true")
+    ap.add_argument("--only-pre", action="store_true", help="only the PRE lattice N = 1 ... 5 (no settle, shuffled, silo)")
     a = ap.parse_args()
     out = a.out or Path(tempfile.mkdtemp(prefix="dem2d-suite."))
     out.mkdir(parents=True, exist_ok=True)
@@ -182,7 +183,7 @@ def main():
         print(f"bench/suite.py: LAMMPS ({a.lmp}) not found (apt-get install -y lammps): dem2d only", file=sys.stderr)
     threads_ok = {label: has_threads(b) for label, b in builds}
 
-    settle = SETTLE + ([SETTLE_BIG] if a.big else [])
+    settle = [] if a.only_pre else SETTLE + ([SETTLE_BIG] if a.big else [])
     cases = []  # (kind, label, case path, lammps folder)
     for label, rows, cols, steps, quick in settle:
         st = quick if a.quick else steps
@@ -204,13 +205,13 @@ def main():
             cases.append(("pre", f"N{n}", case, None))
     # locality (bench/README.md): the 10^4 settle with its disks numbered at random, reordering off and on
     rows, cols, steps, quick = SHUFFLED
-    text = subprocess.run([sys.executable, str(ROOT / "bench/make_settle_case.py"), str(rows), str(cols),
+    text = "" if a.only_pre else subprocess.run([sys.executable, str(ROOT / "bench/make_settle_case.py"), str(rows), str(cols),
                            str(quick if a.quick else steps), "--shuffle"], check=True, stdout=subprocess.PIPE, text=True).stdout
-    for every in (0, REORDER_EVERY):
+    for every in (() if a.only_pre else (0, REORDER_EVERY)):
         case = out / f"shuffled_reorder{every}.toml"
         case.write_text(text.replace('integrator = "K18"\n', f'integrator = "K18"\nreorder_every = {every}\n', 1))
         cases.append(("shuffled", f"reorder_every={every}", case, None))
-    if SILO_CASE.exists():
+    if SILO_CASE.exists() and not a.only_pre:
         case = SILO_CASE
         if a.quick:
             case = out / "silo_quick.toml"

@@ -77,6 +77,24 @@ TEST_CASE("face: segment positions xi_i = (2i - 1 - N)/N (M13.1) and the face en
   CHECK(dem::segment_xi(SegmentPositions::ends, 2, 1) == 1.0);
 }
 
+TEST_CASE("face: the compile-time table of xi_i holds exactly the values segment_xi computes at run time", "[face]") {
+  using dem::SegmentPositions;
+  // The law reads ξ_i from dem::kSegmentXi; results stay bit for bit only if every entry is the run-time
+  // division's double (exact equality, both arrangements, N = 1..kMaxSegments).
+  for (int p = 0; p < 2; ++p) {
+    const auto pos = static_cast<SegmentPositions>(p);
+    for (int n = 1; n <= dem::kMaxSegments; ++n) {
+      volatile int n_at_run_time = n;  // keeps the division out of constant folding
+      for (int i = 0; i < n; ++i) {
+        CAPTURE(p, n, i);
+        CHECK(dem::kSegmentXi.xi[p][n][i] == dem::segment_xi(pos, n_at_run_time, i));
+      }
+    }
+  }
+  CHECK(dem::kSegmentXi.xi[0][5][0] == -0.8);
+  CHECK(dem::kSegmentXi.xi[1][2][0] == -1.0);
+}
+
 TEST_CASE("face: a segment breaks exactly when P_e < -sigma_t A/N and then carries nothing (M8, M9)", "[face]") {
   const int n = GENERATE(1, 2, 3, 4, 5);
   CAPTURE(n);

@@ -10,6 +10,8 @@
 // same change. θ1, θ2 are the rotations of the elements relative to the contact frame since the start
 // of contact (the frame turns with the line of centres; a wall frame does not turn).
 #include <array>
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 namespace dem {
@@ -80,10 +82,23 @@ struct FaceForce {
 };
 
 /// Segment position ξ_i, i = 0..N−1 (M13.1 / M13.2).
-inline double segment_xi(SegmentPositions pos, int n, int i) {
+constexpr double segment_xi(SegmentPositions pos, int n, int i) {
   if (pos == SegmentPositions::ends) return i == 0 ? -1.0 : 1.0;  // (M13.2), N = 2
   return (2.0 * (i + 1) - 1.0 - n) / n;                              // (M13.1)
 }
+
+/// segment_xi for every arrangement, N = 1..kMaxSegments and i < N, computed once at compile time (the
+/// same correctly rounded division): the face law reads ξ_i instead of dividing per segment and step.
+struct SegmentXiTable {
+  double xi[2][kMaxSegments + 1][kMaxSegments] = {};
+};
+inline constexpr SegmentXiTable kSegmentXi = [] {
+  SegmentXiTable t;
+  for (int p = 0; p < 2; ++p)
+    for (int n = 1; n <= kMaxSegments; ++n)
+      for (int i = 0; i < n; ++i) t.xi[p][n][i] = segment_xi(static_cast<SegmentPositions>(p), n, i);
+  return t;
+}();
 
 /// Starts a contact: every segment gets the same initial normal displacement u0 (the overlap, or the
 /// first increment), and links if u0 >= 0. `bonded`: the links start intact (tensile strength and
@@ -94,8 +109,127 @@ inline double segment_xi(SegmentPositions pos, int n, int i) {
 void start_face(const FaceLaw& law, const FaceConstants& c, double u0, bool bonded, bool geometric,
                 FaceHistory& h);
 
-/// One step of the face law (M3–M12). Updates the history and returns the resultants.
-FaceForce face_contact_force(const FaceLaw& law, const FaceConstants& c, const FaceKinematics& k,
-                             double inv_dt, FaceHistory& h);
+/// One step of the face law (M3–M12). Updates the history and returns the resultants. Inline (the
+/// contact sweeps call it once per touching face and step): the kinematics and the resultants stay in
+/// registers instead of going through memory (g++ would not inline it by itself: measured, bench/README.md).
+[[gnu::always_inline]] inline FaceForce face_contact_force(const FaceLaw& law, const FaceConstants& c, const FaceKinematics& k,
+                                    double inv_dt, FaceHistory& h);
+
+namespace face_detail {
+// Rotation part of the exact face displacement at ξ (docs/model.md §2, (M2) with ξ → −ξ in our axes):
+// u_rot = −r1(1 − cos θ1) − r2(1 − cos θ2) − aξ(sin θ1 − sin θ2)            (M2.1)
+// v_rot =  r1 sin θ1 + r2 sin θ2 + aξ(cos θ1 − cos θ2)                        (M2.2)
+struct Trig {
+  double s1, c1, s2, c2;
+};
+inline Trig trig(double t1, double t2) { return {std::sin(t1), std::cos(t1), std::sin(t2), std::cos(t2)}; }
+}  // namespace face_detail
+
+[[gnu::always_inline]] inline FaceForce face_contact_force(const FaceLaw& law, const FaceConstants& c, const FaceKinematics& k,
+                                    double inv_dt, FaceHistory& h) {
+  using face_detail::Trig;
+  const int n = law.segments;
+  const double a = c.half_length;
+  const bool exact_rotations = law.normal == NormalIncrement::exact ||
+                               law.tangential != TangentialIncrement::linearised;
+  // Relative rotations in the contact frame, before and after the step.
+  const double t1_old = h.theta1, t2_old = h.theta2;
+  const double dth1 = k.dphi1 - k.dbeta, dth2 = k.dphi2 - k.dbeta;
+  h.theta1 += dth1;
+  h.theta2 += dth2;
+  Trig o{}, w{};
+  if (exact_rotations) {
+    o = face_detail::trig(t1_old, t2_old);
+    w = face_detail::trig(h.theta1, h.theta2);
+  }
+  // ξ-independent parts of the increments.
+  double du0 = 0.0, du_xi = 0.0, dv0 = 0.0, dv_xi = 0.0;
+  if (law.normal == NormalIncrement::exact) {  // (M3.1), integrated exactly over the step
+    du0 = k.du_exact - k.r1 * (o.c1 - w.c1) - k.r2 * (o.c2 - w.c2);
+    du_xi = -a * ((w.s1 - w.s2) - (o.s1 - o.s2));
+  } else {  // (M15.1)
+    du0 = k.du_projected;
+    du_xi = -a * (k.dphi1 - k.dphi2);
+  }
+  switch (law.tangential) {
+    case TangentialIncrement::linearised:  // (M15.2) = Cundall's (K5)
+      dv0 = k.dv_translation + k.r1 * k.dphi1 + k.r2 * k.dphi2;
+      break;
+    case TangentialIncrement::exact:  // (M3.2), consistent reading
+    case TangentialIncrement::literal:
+    case TangentialIncrement::hisatake:  // (M16): no translation term
+      dv0 = k.r1 * (w.s1 - o.s1) + k.r2 * (w.s2 - o.s2);
+      dv_xi = a * ((w.c1 - w.c2) - (o.c1 - o.c2));
+      if (law.tangential != TangentialIncrement::hisatake) dv0 += k.dv_frame;
+      if (law.tangential == TangentialIncrement::literal) dv0 += k.r1 * dth1 + k.r2 * dth2;
+      break;
+  }
+
+  // Per-segment constants that do not depend on the segment, formed once (the same operations as
+  // per segment: −σ_t·A/N with σ_t = 0 for a broken link, c·A/N with c = 0).
+  const double* const xis = kSegmentXi.xi[law.positions == SegmentPositions::ends ? 1 : 0][n];
+  const double kn = c.kn, ks = c.ks, eta_n = c.eta_n, eta_s = c.eta_s, area = c.segment_area;
+  const double tension_intact = -law.tensile_strength * area, tension_broken = -0.0 * area;  // (M8, M9)
+  const double cohesion_intact = law.cohesion * area, cohesion_broken = 0.0 * area;         // (M10)
+  const double tan_phi = law.tan_phi;
+  const bool any_tension = law.tensile_strength > 0.0;
+  const bool healing = law.healing;
+  const bool first = h.geometric_start != 0;
+
+  // The resultants in scalars (registers), put together once at the end: a FaceForce built field by
+  // field in memory and copied whole stalls the copy's wide loads on the narrow stores.
+  double sum_p = 0.0, sum_q = 0.0, sum_moment = 0.0;
+  int links = 0;
+  std::uint8_t any_intact = 0;  // a linked segment is intact (keeps σ_t)
+  for (int i = 0; i < n; ++i) {
+    SegmentState& s = h.seg[static_cast<std::size_t>(i)];
+    const double xi = xis[i];
+    const double du = du0 + du_xi * xi;
+    const double dv = dv0 + dv_xi * xi;
+    s.u += du;
+    if (!s.linked) {
+      if (s.u < 0.0) continue;  // still apart at ξ_i
+      s.linked = 1;             // unlinked → linked when u(ξ) ≥ 0
+      s.intact = healing ? 1 : s.intact;
+      s.pe = kn * s.u;
+      s.qe = 0.0;
+    } else {
+      s.pe += kn * du;  // (M6)
+      if (first) s.qe = -ks * dv;
+      s.qe += ks * dv;
+    }
+    const bool intact = s.intact != 0;
+    if (s.pe < (intact ? tension_intact : tension_broken)) {  // (M8, M9): the link breaks and carries nothing
+      s.linked = 0;
+      s.intact = 0;
+      s.pe = s.qe = 0.0;
+      continue;
+    }
+    double pd = eta_n * du * inv_dt;  // (M7.1)
+    double qd = eta_s * dv * inv_dt;  // (M7.2)
+    const double limit = (intact ? cohesion_intact : cohesion_broken) + s.pe * tan_phi;  // (M10, M11): τ_y A/N
+    if (limit <= 0.0) {
+      s.qe = 0.0;
+      qd = 0.0;
+    } else if (std::abs(s.qe) > limit) {
+      s.qe = std::copysign(limit, s.qe);
+      qd = 0.0;
+    }
+    const double p = s.pe + pd, q = s.qe + qd;
+    sum_p += p;
+    sum_q += q;
+    sum_moment += a * xi * p;
+    ++links;
+    any_intact |= s.intact;
+  }
+  if (first) h.geometric_start = 0;
+  FaceForce f;
+  f.p = sum_p;
+  f.q = sum_q;
+  f.p_moment = sum_moment;
+  f.links = links;
+  f.any_tensile = any_tension && any_intact != 0;  // a linked segment with σ_t > 0
+  return f;
+}
 
 }  // namespace dem

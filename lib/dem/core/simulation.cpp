@@ -659,6 +659,19 @@ FaceConstants face_constants(const PairLaw& law, double r_i, double r_j, double 
   return c;
 }
 
+namespace {
+// The slot keeps the step's resultants (outputs), stored field by field: a whole-struct copy makes g++
+// build the FaceForce on the stack and move it with wide loads over its narrow stores (a store-forwarding
+// stall per face and step, measured in bench/README.md).
+inline void keep_forces(FaceForce& to, const FaceForce& f) {
+  to.p = f.p;
+  to.q = f.q;
+  to.p_moment = f.p_moment;
+  to.links = f.links;
+  to.any_tensile = f.any_tensile;
+}
+}  // namespace
+
 template <bool Shares>
 void Simulation::sweep_face_pairs(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
@@ -703,7 +716,7 @@ void Simulation::sweep_face_pairs(double inv_dt, std::size_t b, std::size_t end)
       if (preloading_) s.h.geometric_start = 0;  // a static preload loads the shear springs
     }
     const FaceForce f = face_contact_force(law.face, s.c, k, inv_dt, s.h);
-    s.f = f;
+    keep_forces(s.f, f);
     s.nx = nx;
     s.ny = ny;
     if (f.links == 0) s.touching = 0;  // touching → not touching when no link remains
@@ -763,7 +776,7 @@ void Simulation::sweep_face_walls(double inv_dt, std::size_t b, std::size_t end)
       if (preloading_) s.h.geometric_start = 0;
     }
     const FaceForce f = face_contact_force(law.face, s.c, k, inv_dt, s.h);
-    s.f = f;
+    keep_forces(s.f, f);
     s.nx = nx;
     s.ny = ny;
     if (f.links == 0) s.touching = 0;
