@@ -109,13 +109,20 @@ def best(runs):
 
 
 def slope(points):
-    """Least-squares slope of log(time per step) against log(elements): 1 + that of the cost per element-step."""
+    """points: [(elements, cost per element-step)]. Least-squares slope of log(time per step) = log(elements x
+    cost) against log(elements): 1 + that of the cost per element-step (1: flat)."""
     if len(points) < 2:
         return None
     xs = [math.log(n) for n, _ in points]
-    ys = [math.log(n / rate) for n, rate in points]
+    ys = [math.log(n * cost) for n, cost in points]
     mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
     return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+
+
+# The slope's meaning, checked at every run (until 22 Nov 2026 it was fed costs as if they were rates and
+# printed 2 - slope): a flat cost gives 1, a cost growing 10x over 10^3 -> 10^6 gives 4/3.
+assert abs(slope([(1e3, 20.0), (1e6, 20.0)]) - 1.0) < 1e-12
+assert abs(slope([(1e3, 10.0), (1e4, 10.0 * 10 ** (1 / 3)), (1e6, 100.0)]) - 4.0 / 3.0) < 1e-12
 
 
 def svg_plot(series, path):
