@@ -53,6 +53,23 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
+/// Column `col` of every row of a runs.csv (no quoted commas before it).
+std::vector<double> csv_column(const std::string& csv, std::size_t col) {
+  std::vector<double> v;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
+    REQUIRE(cells.size() > col);
+    v.push_back(std::stod(cells[col]));
+  }
+  return v;
+}
+
+
 }  // namespace
 
 TEST_CASE("A killed sweep leaves no result and continues from its finished runs with the same indices", "[sensitivity]") {
@@ -94,17 +111,7 @@ TEST_CASE("dt_fraction ties each run's time step to the guard's limit, and also 
   const std::string csv = slurp(out / "runs.csv");
   REQUIRE_THAT(csv, Contains(",dt,"));
   // Rows: 0 base, 1–3 K at u = 0, 0.5, 1 (m at base, 1 kg): Δt = 0.05 × the limit, ∝ K^-1/2.
-  std::vector<double> dt;
-  std::istringstream in(csv);
-  std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ls(line);
-    for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
-    REQUIRE(cells.size() >= 5);
-    dt.push_back(std::stod(cells[4]));  // run, method, K, m, dt
-  }
+  const std::vector<double> dt = csv_column(csv, 4);  // run, method, K, m, dt
   REQUIRE(dt.size() == 7);
   CHECK(dt[1] / dt[3] == Approx(std::sqrt(8.0)).epsilon(1e-9));
   CHECK(dt[4] / dt[6] == Approx(0.5).epsilon(1e-9));  // m from 0.5 to 2 kg: Δt ∝ √m
@@ -121,26 +128,6 @@ TEST_CASE("dt_fraction ties each run's time step to the guard's limit, and also 
   CHECK_THROWS_WITH(ver::run_sensitivity(h, quiet(test::fresh_dir("dem2d_unit_sweep", "sweep_bad_out"))),
                     Contains("sensitivity.toml:") && Contains("dt_fraction"));
 }
-
-namespace {
-
-/// Column `col` of every row of a runs.csv (no quoted commas before it).
-std::vector<double> csv_column(const std::string& csv, std::size_t col) {
-  std::vector<double> v;
-  std::istringstream in(csv);
-  std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ls(line);
-    for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
-    REQUIRE(cells.size() > col);
-    v.push_back(std::stod(cells[col]));
-  }
-  return v;
-}
-
-}  // namespace
 
 TEST_CASE("replicates: each sample is the mean of its replicates, a replicate may not override a parameter", "[sensitivity]") {
   // The resting disk's overlap m g / K is linear in g: the mean over g = 8 and 12 m/s² is the overlap at
