@@ -142,10 +142,13 @@ class Simulation {
   void sum_wall_forces();
   void index_contacts();  // after every change of the slot lists (rebuild, restore)
   void share_work(int threads);  // shares_ for this many threads (after index_contacts or set_threads)
-  bool all_free() const;       // every element active and free
+  // How integrate_range may advance the elements: every one active and free (one vectorised pass); the
+  // active ones free, some removed from the run (the same pass with a select); or element by element.
+  enum class Freedom : std::uint8_t { general, active_free, all_free };
+  Freedom freedom() const;
   double velocity_dt() const;  // the step of (K17): Δt, or Δt/2 at a staggered start
   // (K17–K19) over elements [b, e), then the blow-up test over them (overstep())
-  Overstep integrate_range(std::size_t b, std::size_t e, double dt_v, bool free_only, double limit2);
+  Overstep integrate_range(std::size_t b, std::size_t e, double dt_v, Freedom freedom, double limit2);
   void move_walls();
   void advance_base_plate();  // base friction (M21) forces, plate travel
   // A linear contact forms: its dashpots and the history it starts from.
