@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
+
+#include <time.h>
 
 #include <fmt/format.h>
 
@@ -170,6 +173,13 @@ Simulation::Overstep find_overstep(const Elements& e, std::size_t b, std::size_t
     if (!(q <= limit2) && e.active[i]) take_worse(worst, {i, q});
   }
   return worst;
+}
+/// CPU time of the calling thread [s] (not the wall clock: a thread descheduled by other work on a shared
+/// machine must not look slow).
+double thread_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 inline double prefilter_limit(double limit2) { return limit2 * (1.0 - 1e-12); }
 /// The forces of a step start from the weight, f = m g (K15), both components in one pass.
@@ -352,6 +362,37 @@ WorkerThreads& Simulation::workers(int threads) {
 
 void Simulation::share_work(int threads) {
   shares_.build(threads, m_.elements.size(), linear_pairs_.pair, face_pairs_, linear_walls_, face_walls_);
+  busy_.assign(static_cast<std::size_t>(threads), ThreadClock{});
+  balance_steps_ = 0;
+}
+
+void Simulation::balance_threads(const std::vector<double>& seconds) {
+  const int nt = threads_used();
+  if (nt < 2) return;
+  if (shares_.threads != nt) share_work(nt);
+  shares_.balance(seconds, linear_pairs_.pair, face_pairs_, linear_walls_, face_walls_);
+  if (std::getenv("THR_DEBUG")) fmt::print(stderr, "balance step {} seconds {} {} first {}\n", step_, seconds[0], seconds[1], shares_.first[1]);  // THRDEBUG
+  busy_.assign(static_cast<std::size_t>(nt), ThreadClock{});
+  balance_steps_ = 0;
+  ++balances_;
+}
+
+void Simulation::balance_if_uneven() {
+  if (++balance_steps_ < kBalanceSteps) return;
+  busy_seconds_.resize(busy_.size());
+  double most = 0.0, sum = 0.0;
+  for (std::size_t t = 0; t < busy_.size(); ++t) {
+    busy_seconds_[t] = busy_[t].seconds;
+    most = std::max(most, busy_[t].seconds);
+    sum += busy_[t].seconds;
+  }
+  const double mean = sum / static_cast<double>(busy_.size());
+  if (most > (1.0 + kBalanceTolerance) * mean) {
+    balance_threads(busy_seconds_);
+  } else {
+    busy_.assign(busy_.size(), ThreadClock{});
+    balance_steps_ = 0;
+  }
 }
 
 void Simulation::sweep_scatter(double inv_dt) {
@@ -915,14 +956,19 @@ void Simulation::step() {
           pool.barrier();
         }
       }
+      const double c0 = thread_seconds();  // the thread's work on its share, without the barrier's wait
       sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
+      const double c1 = thread_seconds();
       pool.barrier();
+      const double c2 = thread_seconds();
       gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
       if (!plate) {
         oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, free_only, limit2_step);  // (K17–K19)
       }
+      busy_[k].seconds += (c1 - c0) + (thread_seconds() - c2);
     };
     pool.run(body);
+    balance_if_uneven();  // the next step's shares (results do not depend on them)
   }
   sum_wall_forces();
   if (plate) {

@@ -107,6 +107,18 @@ class Simulation {
   }
   int threads() const { return threads_; }
   int threads_used() const;  // what a step uses: threads() limited by min_per_thread
+  /// On several threads, a step measures each thread's CPU time on its share; every kBalanceSteps steps,
+  /// if the busiest thread took more than kBalanceTolerance above the mean, the boundaries between the
+  /// shares move so that the measured work is divided evenly (ThreadShares::balance). No result depends
+  /// on where the boundaries lie. balance_threads does it at once with the given seconds per thread (tests
+  /// use it to force any split); balances() counts the moves.
+  static constexpr int kBalanceSteps = 32;
+  static constexpr double kBalanceTolerance = 0.03;
+  void balance_threads(const std::vector<double>& seconds);
+  std::int64_t balances() const { return balances_; }
+  /// The element ranges of the threads' shares (threads_used() + 1 boundaries; empty before a step on
+  /// several threads).
+  const std::vector<std::uint32_t>& share_bounds() const { return shares_.first; }
 
   /// Element ids (Elements::id, what outputs show) and indices (where the element sits in the arrays now):
   /// equal unless numerics.reorder_every renumbered the elements in space (spatial_order.hpp).
@@ -175,6 +187,14 @@ class Simulation {
   WorkerThreads& workers(int threads);
   std::vector<std::uint8_t> displaced_;  // per thread: an element of its share moved far enough to rebuild
   std::vector<Overstep> oversteps_;      // per thread: the blow-up test over its share (overstep())
+  struct alignas(64) ThreadClock {       // per thread: CPU seconds on its share since the shares were made
+    double seconds = 0.0;
+  };
+  std::vector<ThreadClock> busy_;
+  std::vector<double> busy_seconds_;     // scratch for balance_threads
+  int balance_steps_ = 0;                // steps measured in busy_
+  std::int64_t balances_ = 0;
+  void balance_if_uneven();
   std::vector<ElementPush> face_push_, face_wall_push_;  // this step's face forces on the elements
   int threads_ = 1;
   std::size_t min_per_thread_ = 4096;
