@@ -178,26 +178,26 @@ TEST_CASE("Measured times move the boundaries between the threads' shares toward
   dem::ThreadShares s;
   s.build(2, 1024, none, no_faces, no_walls, no_faces);
   REQUIRE(s.first == std::vector<std::uint32_t>{0, 512, 1024});
-  s.balance({2.0, 1.0}, none, no_faces, no_walls, no_faces);
+  s.balance({2.0, 1.0}, none, no_faces, no_walls, no_faces, false);
   CHECK(s.first == std::vector<std::uint32_t>{0, 384, 1024});
   // the next build (after a rebuild) keeps the measured rates per element range
-  s.build(2, 1024, none, no_faces, no_walls, no_faces);
+  s.build(2, 1024, none, no_faces, no_walls, no_faces, false);
   CHECK(s.first == std::vector<std::uint32_t>{0, 384, 1024});
   // an equal cost per element brings it back; a thread without time takes the mean rate
-  s.balance({384.0, 640.0}, none, no_faces, no_walls, no_faces);
+  s.balance({384.0, 640.0}, none, no_faces, no_walls, no_faces, false);
   CHECK(s.first == std::vector<std::uint32_t>{0, 512, 1024});
-  s.balance({0.0, 1.0}, none, no_faces, no_walls, no_faces);
+  s.balance({0.0, 1.0}, none, no_faces, no_walls, no_faces, false);
   CHECK(s.first == std::vector<std::uint32_t>{0, 512, 1024});
   // thread 1 three times slower: 512 + (2 − 1) / (3/512) elements, 682
   s.forget_rates();
-  s.balance({1.0, 3.0}, none, no_faces, no_walls, no_faces);
+  s.balance({1.0, 3.0}, none, no_faces, no_walls, no_faces, false);
   CHECK(s.first == std::vector<std::uint32_t>{0, 682, 1024});
   // three threads: the shared elements are those of a fresh division at the same boundaries
   std::vector<dem::SlotPair> pairs;
   for (std::uint32_t i = 0; i + 7 < 1024; i += 3) pairs.push_back({i, i + 7});
   s.forget_rates();
   s.build(3, 1024, pairs, no_faces, no_walls, no_faces);
-  s.balance({1.0, 2.0, 4.0}, pairs, no_faces, no_walls, no_faces);
+  s.balance({1.0, 2.0, 4.0}, pairs, no_faces, no_walls, no_faces, false);
   // work 1:2:4 per unit of estimate: the boundaries move to about 5/9 and 29/36 of the estimate (569, 825)
   CHECK(s.first[1] > 540);
   CHECK(s.first[1] < 600);

@@ -53,7 +53,10 @@ class Simulation {
   void step();
 
   const Model& model() const { return m_; }
-  Model& model() { return m_; }
+  Model& model() {  // whoever may change the model: the next step makes its own rebuild test
+    tested_step_ = -1;
+    return m_;
+  }
   double time() const { return time_; }
   std::int64_t steps() const { return step_; }
   double dt() const { return m_.numerics.dt; }
@@ -102,6 +105,7 @@ class Simulation {
   /// A thread takes at least `min_per_thread` elements (a step of fewer elements is faster on one
   /// thread: the threads' start and barrier cost more than they save); tests lower it to 1.
   void set_threads(int threads, std::size_t min_per_thread = 4096) {
+    tested_step_ = -1;
     threads_ = threads < 1 ? 1 : threads;
     min_per_thread_ = min_per_thread < 1 ? 1 : min_per_thread;
   }
@@ -154,10 +158,17 @@ class Simulation {
   void sum_wall_forces();
   void index_contacts();  // after every change of the slot lists (rebuild, restore)
   void share_work(int threads);  // shares_ for this many threads (after index_contacts or set_threads)
-  bool all_free() const;       // every element active and free
+  bool all_free(std::size_t b, std::size_t e) const;  // every element of [b, e) active and free
   double velocity_dt() const;  // the step of (K17): Δt, or Δt/2 at a staggered start
   // (K17–K19) over elements [b, e), then the blow-up test over them (overstep())
-  Overstep integrate_range(std::size_t b, std::size_t e, double dt_v, bool free_only, double limit2);
+  // and, if limit2_next >= 0, the next step's rebuild test over them (displaced: any_displaced)
+  Overstep integrate_range(std::size_t b, std::size_t e, double dt_v, bool free_only, double limit2,
+                           double limit2_next, std::uint8_t& displaced);
+  // The rebuild limit of the next step if it is known now (static walls, no base plate), else −1.
+  double next_rebuild_limit2() const;
+  // The step whose rebuild test the last integration made (displaced_); −1: none. Anything that may
+  // change positions, references or walls between steps resets it (mutable model(), restores, reorders).
+  std::int64_t tested_step_ = -1;
   void move_walls();
   void advance_base_plate();  // base friction (M21) forces, plate travel
   // A linear contact forms: its dashpots and the history it starts from.

@@ -32,7 +32,7 @@ struct ThreadShares {
   // (balance()); empty: none. The next builds weight each element's estimate by the rate of the range it
   // lay in, until forget_rates() (the elements were renumbered).
   std::vector<double> rate;
-  std::vector<std::uint32_t> rate_first;
+  std::vector<std::uint32_t> rate_first, previous;  // previous: scratch
   std::vector<double> cost, measured;              // scratch: the weighted estimate per element; rates
 
   // Work estimates per element and per slot the element computes (a face contact costs several times
@@ -43,23 +43,22 @@ struct ThreadShares {
   void build(int nt, std::size_t elements, const LinearPairs& linear_pairs, const FaceSlots& face_pairs,
              const LinearWalls& linear_walls, const FaceSlots& face_walls) {
     threads = nt < 1 ? 1 : nt;
-    const std::size_t n = static_cast<std::size_t>(threads);
     work.assign(elements, element_work);
     for (const auto& s : linear_pairs) work[s.i] += linear_work;
     for (const auto& s : face_pairs) work[s.i] += face_work;
     for (const auto& s : linear_walls) work[s.i] += linear_work;
     for (const auto& s : face_walls) work[s.i] += face_work;
-    divide(elements);
+    divide(elements, true);
     assign(linear_pairs, face_pairs, linear_walls, face_walls);
   }
 
   /// Moves the boundaries so that every thread gets the same share of the work as measured: thread t took
   /// seconds[t] on its range of the current shares. Each element's estimate is weighted by its thread's cost
   /// per unit of estimate, and the weighted total is divided evenly. The slot lists must be those of the
-  /// last build (no rebuild in between).
+  /// last build (no rebuild in between). damped: the boundaries move half the way.
   template <class LinearPairs, class FaceSlots, class LinearWalls>
   void balance(const std::vector<double>& seconds, const LinearPairs& linear_pairs, const FaceSlots& face_pairs,
-               const LinearWalls& linear_walls, const FaceSlots& face_walls) {
+               const LinearWalls& linear_walls, const FaceSlots& face_walls, bool damped = true) {
     const std::size_t n = static_cast<std::size_t>(threads), elements = work.size();
     if (seconds.size() != n || first.size() != n + 1 || first[n] != elements) return;
     std::vector<double>& r = measured;
@@ -80,7 +79,7 @@ struct ThreadShares {
       if (x <= 0.0) x = known / static_cast<double>(with);  // an empty range: the mean rate
     rate.assign(r.begin(), r.end());
     rate_first.assign(first.begin(), first.end());
-    divide(elements);
+    divide(elements, damped);
     assign(linear_pairs, face_pairs, linear_walls, face_walls);
   }
   void forget_rates() {
@@ -89,9 +88,14 @@ struct ThreadShares {
   }
 
  private:
-  // first[]: the estimate (weighted by the measured rates if there are any) divided evenly.
-  void divide(std::size_t elements) {
+  // first[]: the estimate (weighted by the measured rates if there are any) divided evenly. damped: with
+  // rates, the boundaries move only half the way from where they were (the measured rate is the mean of a
+  // range, not the rate near its boundary, and the times are noisy on a machine shared with other work: a
+  // full step overshoots and swings back).
+  void divide(std::size_t elements, bool damped) {
     const std::size_t n = static_cast<std::size_t>(threads);
+    const bool had = first.size() == n + 1 && first[n] == elements;
+    previous.assign(first.begin(), first.end());
     first.assign(n + 1, 0);
     first[n] = static_cast<std::uint32_t>(elements);
     const bool rated = rate.size() == n && rate_first.size() == n + 1 && rate_first[n] == elements;
@@ -117,6 +121,7 @@ struct ThreadShares {
       const double target = total * static_cast<double>(t) / static_cast<double>(n);
       while (e < elements && done + cost[e] <= target) done += cost[e++];
       first[t] = static_cast<std::uint32_t>(e);
+      if (damped && had) first[t] = static_cast<std::uint32_t>((std::uint64_t{first[t]} + previous[t] + 1) / 2);
     }
   }
   // The slot runs, the shared elements and each thread's list of them, for the boundaries in first[].
