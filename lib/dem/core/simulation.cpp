@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 
@@ -371,7 +370,6 @@ void Simulation::balance_threads(const std::vector<double>& seconds) {
   if (nt < 2) return;
   if (shares_.threads != nt) share_work(nt);
   shares_.balance(seconds, linear_pairs_.pair, face_pairs_, linear_walls_, face_walls_);
-  if (std::getenv("THR_DEBUG")) fmt::print(stderr, "balance step {} seconds {} {} first {}\n", step_, seconds[0], seconds[1], shares_.first[1]);  // THRDEBUG
   busy_.assign(static_cast<std::size_t>(nt), ThreadClock{});
   balance_steps_ = 0;
   ++balances_;
