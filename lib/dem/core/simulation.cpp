@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <time.h>
+
 #include <fmt/format.h>
 
 #include "dem/core/stability.hpp"
@@ -185,6 +187,13 @@ Simulation::Overstep find_overstep(const Elements& e, std::size_t b, std::size_t
     if (!(q <= limit2) && e.active[i]) take_worse(worst, {i, q});
   }
   return worst;
+}
+/// CPU time of the calling thread [s] (not the wall clock: a thread descheduled by other work on a shared
+/// machine must not look slow).
+double thread_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 inline double prefilter_limit(double limit2) { return limit2 * (1.0 - 1e-12); }
 /// The forces of a step start from the weight, f = m g (K15), both components in one pass.
@@ -367,6 +376,36 @@ WorkerThreads& Simulation::workers(int threads) {
 
 void Simulation::share_work(int threads) {
   shares_.build(threads, m_.elements.size(), linear_pairs_.pair, face_pairs_, linear_walls_, face_walls_);
+  busy_.assign(static_cast<std::size_t>(threads), ThreadClock{});
+  balance_steps_ = 0;
+}
+
+void Simulation::balance_threads(const std::vector<double>& seconds) {
+  const int nt = threads_used();
+  if (nt < 2) return;
+  if (shares_.threads != nt) share_work(nt);
+  shares_.balance(seconds, linear_pairs_.pair, face_pairs_, linear_walls_, face_walls_);
+  busy_.assign(static_cast<std::size_t>(nt), ThreadClock{});
+  balance_steps_ = 0;
+  ++balances_;
+}
+
+void Simulation::balance_if_uneven() {
+  if (++balance_steps_ < kBalanceSteps) return;
+  busy_seconds_.resize(busy_.size());
+  double most = 0.0, sum = 0.0;
+  for (std::size_t t = 0; t < busy_.size(); ++t) {
+    busy_seconds_[t] = busy_[t].seconds;
+    most = std::max(most, busy_[t].seconds);
+    sum += busy_[t].seconds;
+  }
+  const double mean = sum / static_cast<double>(busy_.size());
+  if (most > (1.0 + kBalanceTolerance) * mean) {
+    balance_threads(busy_seconds_);
+  } else {
+    busy_.assign(busy_.size(), ThreadClock{});
+    balance_steps_ = 0;
+  }
 }
 
 void Simulation::sweep_scatter(double inv_dt) {
@@ -608,6 +647,7 @@ void Simulation::open_wall(std::uint32_t w) {
   m_.walls[w].open = true;
   std::erase_if(linear_walls_, [w](const LinearSlot& s) { return s.j == w; });
   std::erase_if(face_walls_, [w](const FaceSlot& s) { return s.j == w; });
+  tested_step_ = -1;
   index_contacts();  // the slot lists changed
 }
 
@@ -812,15 +852,16 @@ int Simulation::threads_used() const {
   return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads_), most));
 }
 
-Simulation::Freedom Simulation::freedom() const {
+Simulation::Freedom Simulation::freedom(std::size_t b, std::size_t end) const {
   // The usual cases, every element free and active (or removed from the run): the same operations per
   // element, in branch-free loops that the compiler vectorises (the lanes round exactly as the scalar
-  // code; no FMA contraction).
+  // code; no FMA contraction). Each thread asks it of its own elements (inside the step's job, not
+  // serially before it).
   const Elements& e = m_.elements;
   std::uint8_t all = 1, active_free = 1;
   const std::uint8_t* __restrict act = e.active.data();
   const Motion* __restrict mot = e.motion.data();
-  for (std::size_t i = 0; i < e.size(); ++i) {
+  for (std::size_t i = b; i < end; ++i) {
     all &= (act[i] != 0) & (mot[i] == Motion::free);
     active_free &= (act[i] == 0) | (mot[i] == Motion::free);
   }
@@ -834,10 +875,15 @@ double Simulation::velocity_dt() const {
 }
 
 Simulation::Overstep Simulation::integrate_range(std::size_t b, std::size_t end, double dt_v, Freedom freedom,
-                                                 double limit2) {
+                                                 double limit2, double limit2_next, std::uint8_t& displaced) {
   Elements& e = m_.elements;
   const double dt = m_.numerics.dt;
   const bool k19 = m_.numerics.integrator == Integrator::k19;
+  if (limit2_next >= 0.0) {  // right after the integration, while the positions are in the caches
+    const Overstep o = integrate_range(b, end, dt_v, freedom, limit2, -1.0, displaced);
+    displaced = any_displaced(e.x.data() + b, e.y.data() + b, x_ref_.data() + b, y_ref_.data() + b, limit2_next, end - b);
+    return o;
+  }
   if (freedom != Freedom::general) {
     const bool masked = freedom == Freedom::active_free;
     auto all = k19 ? (masked ? integrate_free<true, true> : integrate_free<true, false>)
@@ -893,9 +939,25 @@ void Simulation::move_walls() {
   }
 }
 
+double Simulation::next_rebuild_limit2() const {
+  if (m_.base_plate.enabled) return -1.0;  // integrated after base friction, in a second pass
+  for (const Wall& w : m_.walls)
+    if (w.drive >= 0) return -1.0;  // the limit of the next step depends on where the walls move to
+  return rebuild_limit2();          // static walls: the limit after this step's rebuild, if any, holds
+}
+
 void Simulation::step() {
   const int nt = threads_used();
-  if (nt == 1 && step_ > 0 && needs_rebuild()) rebuild();  // on several threads: inside the job below
+  // The rebuild test of this step (needs_rebuild) was made by the last step's integration, element by
+  // element in the same pass, if nothing changed the state since (tested_step_ == step_).
+  const bool tested = step_ > 0 && tested_step_ == step_;
+  if (tested) {
+    std::uint8_t any = 0;
+    for (std::uint8_t d : displaced_) any |= d;
+    if (any) rebuild();
+  }
+  tested_step_ = -1;
+  if (nt == 1 && step_ > 0 && !tested && needs_rebuild()) rebuild();  // on several threads: inside the job below
   for (Wall& w : m_.walls) w.force = {};
   const double inv_dt = 1.0 / m_.numerics.dt;
   const std::size_t n = m_.elements.size();
@@ -903,22 +965,23 @@ void Simulation::step() {
   // it each thread integrates the elements it has just summed.
   const bool plate = m_.base_plate.enabled;
   const double dt_v = velocity_dt();
-  const Freedom freedom = this->freedom();
   const double limit2_step = m_.numerics.max_step_fraction * m_.numerics.max_step_fraction;
+  const double limit2_next = plate ? -1.0 : next_rebuild_limit2();  // < 0: the next step tests by itself
   if (nt == 1) {  // each slot adds its forces at once, in slot order
     Elements& e = m_.elements;
     weight(e.fx.data(), e.fy.data(), e.mass.data(), m_.gravity, n);  // (K15): gravity
     std::fill(e.moment.begin(), e.moment.end(), 0.0);
     sweep_scatter(inv_dt);
     if (!plate) {
-      oversteps_.assign(1, integrate_range(0, n, dt_v, freedom, limit2_step));
+      displaced_.assign(1, 0);
+      oversteps_.assign(1, integrate_range(0, n, dt_v, freedom(0, n), limit2_step, limit2_next, displaced_[0]));
     }
   } else {  // the same sums, shared as thread_shares.hpp says
     if (shares_.threads != nt) share_work(nt);
     WorkerThreads& pool = workers(nt);
-    const double limit2 = step_ > 0 ? rebuild_limit2() : 0.0;
-    const bool test = step_ > 0 && limit2 >= 0.0;  // the rebuild test, each thread over its elements
-    if (step_ > 0 && !test) rebuild();
+    const double limit2 = step_ > 0 && !tested ? rebuild_limit2() : 0.0;
+    const bool test = step_ > 0 && !tested && limit2 >= 0.0;  // the rebuild test, each thread over its elements
+    if (step_ > 0 && !tested && !test) rebuild();
     displaced_.assign(static_cast<std::size_t>(nt), 0);
     oversteps_.assign(static_cast<std::size_t>(nt), Overstep{});
     auto body = [&](int t) {  // thread t takes share t
@@ -936,30 +999,39 @@ void Simulation::step() {
           pool.barrier();
         }
       }
+      const double c0 = thread_seconds();  // the thread's work on its share, without the barrier's wait
       sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
+      const double c1 = thread_seconds();
       pool.barrier();
+      const double c2 = thread_seconds();
       gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
-      if (!plate) {
-        oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, freedom, limit2_step);  // (K17–K19)
+      if (!plate) {  // (K17–K19), and the next step's rebuild test
+        oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, freedom(shares_.first[k], shares_.first[k + 1]), limit2_step,
+                                        limit2_next, displaced_[k]);
       }
+      busy_[k].seconds += (c1 - c0) + (thread_seconds() - c2);
     };
     pool.run(body);
+    balance_if_uneven();  // the next step's shares (results do not depend on them)
   }
   sum_wall_forces();
   if (plate) {
     advance_base_plate();
+    std::uint8_t unused = 0;
     if (nt == 1) {
-      oversteps_.assign(1, integrate_range(0, n, dt_v, freedom, limit2_step));
+      oversteps_.assign(1, integrate_range(0, n, dt_v, freedom(0, n), limit2_step, -1.0, unused));
     } else {
       oversteps_.assign(static_cast<std::size_t>(nt), Overstep{});
       auto body = [&](int t) {
         const std::size_t k = static_cast<std::size_t>(t);
-        oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, freedom, limit2_step);
+        std::uint8_t none = 0;
+        oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, freedom(shares_.first[k], shares_.first[k + 1]), limit2_step, -1.0, none);
       };
       workers(nt).run(body);
     }
   }
   move_walls();
+  if (limit2_next >= 0.0) tested_step_ = step_ + 1;
   ++step_;
   time_ = static_cast<double>(step_) * m_.numerics.dt;
 }

@@ -53,7 +53,10 @@ class Simulation {
   void step();
 
   const Model& model() const { return m_; }
-  Model& model() { return m_; }
+  Model& model() {  // whoever may change the model: the next step makes its own rebuild test
+    tested_step_ = -1;
+    return m_;
+  }
   double time() const { return time_; }
   std::int64_t steps() const { return step_; }
   double dt() const { return m_.numerics.dt; }
@@ -102,11 +105,24 @@ class Simulation {
   /// A thread takes at least `min_per_thread` elements (a step of fewer elements is faster on one
   /// thread: the threads' start and barrier cost more than they save); tests lower it to 1.
   void set_threads(int threads, std::size_t min_per_thread = 4096) {
+    tested_step_ = -1;
     threads_ = threads < 1 ? 1 : threads;
     min_per_thread_ = min_per_thread < 1 ? 1 : min_per_thread;
   }
   int threads() const { return threads_; }
   int threads_used() const;  // what a step uses: threads() limited by min_per_thread
+  /// On several threads, a step measures each thread's CPU time on its share; every kBalanceSteps steps,
+  /// if the busiest thread took more than kBalanceTolerance above the mean, the boundaries between the
+  /// shares move so that the measured work is divided evenly (ThreadShares::balance). No result depends
+  /// on where the boundaries lie. balance_threads does it at once with the given seconds per thread (tests
+  /// use it to force any split); balances() counts the moves.
+  static constexpr int kBalanceSteps = 32;
+  static constexpr double kBalanceTolerance = 0.03;
+  void balance_threads(const std::vector<double>& seconds);
+  std::int64_t balances() const { return balances_; }
+  /// The element ranges of the threads' shares (threads_used() + 1 boundaries; empty before a step on
+  /// several threads).
+  const std::vector<std::uint32_t>& share_bounds() const { return shares_.first; }
 
   /// Element ids (Elements::id, what outputs show) and indices (where the element sits in the arrays now):
   /// equal unless numerics.reorder_every renumbered the elements in space (spatial_order.hpp).
@@ -142,13 +158,20 @@ class Simulation {
   void sum_wall_forces();
   void index_contacts();  // after every change of the slot lists (rebuild, restore)
   void share_work(int threads);  // shares_ for this many threads (after index_contacts or set_threads)
-  // How integrate_range may advance the elements: every one active and free (one vectorised pass); the
+  // How integrate_range may advance elements [b, e): every one active and free (one vectorised pass); the
   // active ones free, some removed from the run (the same pass with a select); or element by element.
   enum class Freedom : std::uint8_t { general, active_free, all_free };
-  Freedom freedom() const;
+  Freedom freedom(std::size_t b, std::size_t e) const;
   double velocity_dt() const;  // the step of (K17): Δt, or Δt/2 at a staggered start
   // (K17–K19) over elements [b, e), then the blow-up test over them (overstep())
-  Overstep integrate_range(std::size_t b, std::size_t e, double dt_v, Freedom freedom, double limit2);
+  // and, if limit2_next >= 0, the next step's rebuild test over them (displaced: any_displaced)
+  Overstep integrate_range(std::size_t b, std::size_t e, double dt_v, Freedom freedom, double limit2,
+                           double limit2_next, std::uint8_t& displaced);
+  // The rebuild limit of the next step if it is known now (static walls, no base plate), else −1.
+  double next_rebuild_limit2() const;
+  // The step whose rebuild test the last integration made (displaced_); −1: none. Anything that may
+  // change positions, references or walls between steps resets it (mutable model(), restores, reorders).
+  std::int64_t tested_step_ = -1;
   void move_walls();
   void advance_base_plate();  // base friction (M21) forces, plate travel
   // A linear contact forms: its dashpots and the history it starts from.
@@ -178,6 +201,14 @@ class Simulation {
   WorkerThreads& workers(int threads);
   std::vector<std::uint8_t> displaced_;  // per thread: an element of its share moved far enough to rebuild
   std::vector<Overstep> oversteps_;      // per thread: the blow-up test over its share (overstep())
+  struct alignas(64) ThreadClock {       // per thread: CPU seconds on its share since the shares were made
+    double seconds = 0.0;
+  };
+  std::vector<ThreadClock> busy_;
+  std::vector<double> busy_seconds_;     // scratch for balance_threads
+  int balance_steps_ = 0;                // steps measured in busy_
+  std::int64_t balances_ = 0;
+  void balance_if_uneven();
   std::vector<ElementPush> face_push_, face_wall_push_;  // this step's face forces on the elements
   int threads_ = 1;
   std::size_t min_per_thread_ = 4096;

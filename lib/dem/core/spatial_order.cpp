@@ -174,6 +174,8 @@ void Simulation::apply_order() {
   }
   index_of_id_.resize(e.size());
   for (std::size_t k = 0; k < e.size(); ++k) index_of_id_[e.id[k]] = static_cast<std::uint32_t>(k);
+  shares_.forget_rates();  // measured on index ranges that now hold other elements
+  tested_step_ = -1;       // the rebuild test was made on the old order
 }
 
 void Simulation::restore_order(const std::vector<std::uint32_t>& ids) {

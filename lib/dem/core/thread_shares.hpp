@@ -9,8 +9,12 @@
 // after a barrier its owner sums its slots in the fixed order of the contact index (contact_index.hpp),
 // which is again the one-thread order. So the forces are the same bit for bit for any number of threads.
 // The ranges are balanced by an estimate of each element's work (its integration and the slots it
-// computes). Rebuilt with the contact index; buffers are reused.
+// computes), weighted by the CPU time each thread measured per unit of estimate on its range (balance():
+// a touching contact costs several times a candidate that does not touch, and in a settle the touching
+// ones sit in the rows that landed first, i.e. in one thread's range). Where the boundaries lie changes
+// no result, only which thread computes what. Rebuilt with the contact index; buffers are reused.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -23,7 +27,13 @@ struct ThreadShares {
                                                    // walls, face walls): threads + 1 boundaries
   std::vector<std::uint8_t> shared;                // per element: 1 if summed after the barrier
   std::vector<std::uint32_t> shared_start, shared_items;  // per thread, its shared elements (ascending)
-  std::vector<std::uint64_t> work;                 // scratch
+  std::vector<std::uint64_t> work;                 // per element: the work estimate of the last build
+  // Measured cost per unit of work estimate of each thread's range [rate_first[t], rate_first[t+1])
+  // (balance()); empty: none. The next builds weight each element's estimate by the rate of the range it
+  // lay in, until forget_rates() (the elements were renumbered).
+  std::vector<double> rate;
+  std::vector<std::uint32_t> rate_first, previous;  // previous: scratch
+  std::vector<double> cost, measured;              // scratch: the weighted estimate per element; rates
 
   // Work estimates per element and per slot the element computes (a face contact costs several times
   // a linear one: N segments, a square root, atan2 and hypot).
@@ -33,23 +43,92 @@ struct ThreadShares {
   void build(int nt, std::size_t elements, const LinearPairs& linear_pairs, const FaceSlots& face_pairs,
              const LinearWalls& linear_walls, const FaceSlots& face_walls) {
     threads = nt < 1 ? 1 : nt;
-    const std::size_t n = static_cast<std::size_t>(threads);
     work.assign(elements, element_work);
     for (const auto& s : linear_pairs) work[s.i] += linear_work;
     for (const auto& s : face_pairs) work[s.i] += face_work;
     for (const auto& s : linear_walls) work[s.i] += linear_work;
     for (const auto& s : face_walls) work[s.i] += face_work;
-    std::uint64_t total = 0;
-    for (std::uint64_t w : work) total += w;
-    first.assign(n + 1, 0);
-    std::size_t e = 0;
-    std::uint64_t done = 0;
-    for (std::size_t t = 1; t < n; ++t) {
-      const std::uint64_t target = total / n * t + total % n * t / n;  // total·t/n without overflow
-      while (e < elements && done + work[e] <= target) done += work[e++];
-      first[t] = static_cast<std::uint32_t>(e);
+    divide(elements, true);
+    assign(linear_pairs, face_pairs, linear_walls, face_walls);
+  }
+
+  /// Moves the boundaries so that every thread gets the same share of the work as measured: thread t took
+  /// seconds[t] on its range of the current shares. Each element's estimate is weighted by its thread's cost
+  /// per unit of estimate, and the weighted total is divided evenly. The slot lists must be those of the
+  /// last build (no rebuild in between). damped: the boundaries move half the way.
+  template <class LinearPairs, class FaceSlots, class LinearWalls>
+  void balance(const std::vector<double>& seconds, const LinearPairs& linear_pairs, const FaceSlots& face_pairs,
+               const LinearWalls& linear_walls, const FaceSlots& face_walls, bool damped = true) {
+    const std::size_t n = static_cast<std::size_t>(threads), elements = work.size();
+    if (seconds.size() != n || first.size() != n + 1 || first[n] != elements) return;
+    std::vector<double>& r = measured;
+    r.assign(n, 0.0);
+    double known = 0.0;
+    std::size_t with = 0;
+    for (std::size_t t = 0; t < n; ++t) {
+      std::uint64_t w = 0;
+      for (std::uint32_t k = first[t]; k < first[t + 1]; ++k) w += work[k];
+      if (w > 0 && seconds[t] > 0.0 && std::isfinite(seconds[t])) {
+        r[t] = seconds[t] / static_cast<double>(w);
+        known += r[t];
+        ++with;
+      }
     }
+    if (with == 0) return;
+    for (double& x : r)
+      if (x <= 0.0) x = known / static_cast<double>(with);  // an empty range: the mean rate
+    rate.assign(r.begin(), r.end());
+    rate_first.assign(first.begin(), first.end());
+    divide(elements, damped);
+    assign(linear_pairs, face_pairs, linear_walls, face_walls);
+  }
+  void forget_rates() {
+    rate.clear();
+    rate_first.clear();
+  }
+
+ private:
+  // first[]: the estimate (weighted by the measured rates if there are any) divided evenly. damped: with
+  // rates, the boundaries move only half the way from where they were (the measured rate is the mean of a
+  // range, not the rate near its boundary, and the times are noisy on a machine shared with other work: a
+  // full step overshoots and swings back).
+  void divide(std::size_t elements, bool damped) {
+    const std::size_t n = static_cast<std::size_t>(threads);
+    const bool had = first.size() == n + 1 && first[n] == elements;
+    previous.assign(first.begin(), first.end());
+    first.assign(n + 1, 0);
     first[n] = static_cast<std::uint32_t>(elements);
+    const bool rated = rate.size() == n && rate_first.size() == n + 1 && rate_first[n] == elements;
+    if (!rated) {
+      std::uint64_t total = 0;
+      for (std::uint64_t w : work) total += w;
+      std::size_t e = 0;
+      std::uint64_t done = 0;
+      for (std::size_t t = 1; t < n; ++t) {
+        const std::uint64_t target = total / n * t + total % n * t / n;  // total·t/n without overflow
+        while (e < elements && done + work[e] <= target) done += work[e++];
+        first[t] = static_cast<std::uint32_t>(e);
+      }
+      return;
+    }
+    cost.resize(elements);
+    double total = 0.0;
+    for (std::size_t t = 0; t < n; ++t)
+      for (std::uint32_t k = rate_first[t]; k < rate_first[t + 1]; ++k) total += cost[k] = static_cast<double>(work[k]) * rate[t];
+    std::size_t e = 0;
+    double done = 0.0;
+    for (std::size_t t = 1; t < n; ++t) {
+      const double target = total * static_cast<double>(t) / static_cast<double>(n);
+      while (e < elements && done + cost[e] <= target) done += cost[e++];
+      first[t] = static_cast<std::uint32_t>(e);
+      if (damped && had) first[t] = static_cast<std::uint32_t>((std::uint64_t{first[t]} + previous[t] + 1) / 2);
+    }
+  }
+  // The slot runs, the shared elements and each thread's list of them, for the boundaries in first[].
+  template <class LinearPairs, class FaceSlots, class LinearWalls>
+  void assign(const LinearPairs& linear_pairs, const FaceSlots& face_pairs, const LinearWalls& linear_walls,
+              const FaceSlots& face_walls) {
+    const std::size_t n = static_cast<std::size_t>(threads), elements = work.size();
     split(linear_pairs, slots[0]);
     split(face_pairs, slots[1]);
     split(linear_walls, slots[2]);
@@ -65,8 +144,6 @@ struct ThreadShares {
       shared_start[t + 1] = static_cast<std::uint32_t>(shared_items.size());
     }
   }
-
- private:
   // The run of slots whose element i lies in each range (the list is sorted by i).
   template <class Slots>
   void split(const Slots& list, std::vector<std::size_t>& bounds) const {

@@ -212,6 +212,7 @@ struct SimulationAccess {
     r.get_vec(sim.wall_ref_);
     sim.skin_ = r.get<double>(), sim.time_ = r.get<double>(), sim.step_ = r.get<std::int64_t>();
     sim.rebuilds_ = r.get<std::int64_t>(), sim.preloading_ = r.get<bool>();
+    sim.tested_step_ = -1;  // the next step makes its own rebuild test
     if (r.pos != r.in.size()) throw OutputError(fmt::format("{}: corrupt checkpoint (trailing state bytes)", ck.case_path));
     sim.index_contacts();  // derived from the slot lists, not saved
     if (!other_case) return;
