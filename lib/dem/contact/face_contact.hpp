@@ -156,7 +156,7 @@ template <int NFixed>
     const double du = in.du0 + in.du_xi * xi;
     const double dv = in.dv0 + in.dv_xi * xi;
     s.u += du;
-    if (!s.linked) {
+    if (!s.linked) [[unlikely]] {  // the hints keep the usual path (linked, holding, below the limit) straight
       if (s.u < 0.0) continue;  // still apart at ξ_i
       s.linked = 1;             // unlinked → linked when u(ξ) ≥ 0
       s.intact = in.healing ? 1 : s.intact;
@@ -167,23 +167,27 @@ template <int NFixed>
       s.qe += in.ks * dv;
     }
     const bool intact = s.intact != 0;
-    if (s.pe < (intact ? in.tension_intact : in.tension_broken)) {  // (M8, M9): the link breaks and carries nothing
+    if (s.pe < (intact ? in.tension_intact : in.tension_broken)) [[unlikely]] {  // (M8, M9): the link breaks and carries nothing
       s.linked = 0;
       s.intact = 0;
       s.pe = s.qe = 0.0;
       continue;
     }
-    double pd = in.eta_n * du * in.inv_dt;  // (M7.1)
-    double qd = in.eta_s * dv * in.inv_dt;  // (M7.2)
+    const double pd = in.eta_n * du * in.inv_dt;  // (M7.1)
+    const double qd = in.eta_s * dv * in.inv_dt;  // (M7.2)
     const double limit = (intact ? in.cohesion_intact : in.cohesion_broken) + s.pe * in.tan_phi;  // (M10, M11): τ_y A/N
-    if (limit <= 0.0) {
+    // q = Q_e + Q_d, with Q_d = 0 while sliding (Q_e + 0.0 formed as such: −0.0 + 0.0 = +0.0).
+    double q;
+    if (limit <= 0.0) [[unlikely]] {
       s.qe = 0.0;
-      qd = 0.0;
-    } else if (std::abs(s.qe) > limit) {
+      q = s.qe + 0.0;
+    } else if (std::abs(s.qe) > limit) [[unlikely]] {
       s.qe = std::copysign(limit, s.qe);
-      qd = 0.0;
+      q = s.qe + 0.0;
+    } else {
+      q = s.qe + qd;
     }
-    const double p = s.pe + pd, q = s.qe + qd;
+    const double p = s.pe + pd;
     sum_p += p;
     sum_q += q;
     sum_moment += in.a * xi * p;
