@@ -145,9 +145,11 @@ class Simulation {
   // at once to its elements, in slot order: to every element (one thread, Shares = false), or only to the
   // elements that are not shared between threads (thread_shares.hpp; gather_forces sums the shared ones).
   template <bool Shares> void sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t e);
-  template <bool Shares> void sweep_face_pairs(double inv_dt, std::size_t b, std::size_t e);
+  // The face sweeps in two builds, picked at start-up: plain x86-64 and AVX2 (three-operand VEX code, no
+  // FMA: the same rounding bit for bit; bench/README.md, "PRE faces: the segment loop").
+  template <bool Shares> [[gnu::target_clones("avx2", "default")]] void sweep_face_pairs(double inv_dt, std::size_t b, std::size_t e);
   template <bool Shares> void sweep_linear_walls(double inv_dt, std::size_t b, std::size_t e);
-  template <bool Shares> void sweep_face_walls(double inv_dt, std::size_t b, std::size_t e);
+  template <bool Shares> [[gnu::target_clones("avx2", "default")]] void sweep_face_walls(double inv_dt, std::size_t b, std::size_t e);
   void sweep_scatter(double inv_dt);  // one thread: every slot, scattering into the elements
   // Share `share` of a step on several threads: the slots its elements compute, scattered into its private
   // elements (from m g if from_weight, else onto the forces they hold); then, after a barrier,
