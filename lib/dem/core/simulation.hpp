@@ -16,6 +16,12 @@
 #include "dem/core/thread_shares.hpp"
 #include "dem/core/worker_threads.hpp"
 
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define DEM2D_CLONES_AVX2 [[gnu::target_clones("avx2", "default")]]
+#else
+#define DEM2D_CLONES_AVX2
+#endif
+
 namespace dem {
 
 struct Energies {
@@ -146,10 +152,11 @@ class Simulation {
   // elements that are not shared between threads (thread_shares.hpp; gather_forces sums the shared ones).
   template <bool Shares> void sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t e);
   // The face sweeps in two builds, picked at start-up: plain x86-64 and AVX2 (three-operand VEX code, no
-  // FMA: the same rounding bit for bit; bench/README.md, "PRE faces: the segment loop").
-  template <bool Shares> [[gnu::target_clones("avx2", "default")]] void sweep_face_pairs(double inv_dt, std::size_t b, std::size_t e);
+  // FMA: the same rounding bit for bit; bench/README.md, "PRE faces: the segment loop"). g++ only: clang
+  // (the sanitizer build) does not clone function templates.
+  template <bool Shares> DEM2D_CLONES_AVX2 void sweep_face_pairs(double inv_dt, std::size_t b, std::size_t e);
   template <bool Shares> void sweep_linear_walls(double inv_dt, std::size_t b, std::size_t e);
-  template <bool Shares> [[gnu::target_clones("avx2", "default")]] void sweep_face_walls(double inv_dt, std::size_t b, std::size_t e);
+  template <bool Shares> DEM2D_CLONES_AVX2 void sweep_face_walls(double inv_dt, std::size_t b, std::size_t e);
   void sweep_scatter(double inv_dt);  // one thread: every slot, scattering into the elements
   // Share `share` of a step on several threads: the slots its elements compute, scattered into its private
   // elements (from m g if from_weight, else onto the forces they hold); then, after a barrier,
