@@ -123,8 +123,11 @@ def main():
             walls += (f"region          {w['name']} block {x0!r} {x1!r} {y - 1e-4!r} {y!r} -0.5 0.5 side out units box\n"
                       f"fix             {w['name']} all wall/gran/region {wall_model} region {w['name']}\n")
         open_steps = round(silo.get("open_at", 0.0) / dt)
-        runs = (f"run             {open_steps}\nunfix           {silo['slit']}\n" if open_steps > 0 else
-                f"unfix           {silo['slit']}\n") + f"run             {steps - open_steps}\n"
+        if open_steps >= steps:  # the gate stays closed to the end
+            runs = f"run             {steps}\n"
+        else:
+            runs = (f"run             {open_steps}\nunfix           {silo['slit']}\n" if open_steps > 0 else
+                    f"unfix           {silo['slit']}\n") + f"run             {steps - open_steps}\n"
     else:
         walls = (f"fix             xwalls all wall/gran {wall_model} xplane {xlo!r} {xhi!r}\n"
                  f"fix             ywalls all wall/gran {wall_model} yplane {ylo!r} {yhi!r}\n")

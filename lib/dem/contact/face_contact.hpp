@@ -123,6 +123,83 @@ struct Trig {
   double s1, c1, s2, c2;
 };
 inline Trig trig(double t1, double t2) { return {std::sin(t1), std::cos(t1), std::sin(t2), std::cos(t2)}; }
+
+/// What the segment loop needs per face: the segments' ξ_i, the ξ-independent parts of the increments
+/// (Δu(ξ) = du0 + du_xi ξ, Δv(ξ) = dv0 + dv_xi ξ) and the per-segment constants.
+struct SegmentInputs {
+  const double* xis;
+  double a, du0, du_xi, dv0, dv_xi;
+  double kn, ks, eta_n, eta_s, inv_dt;
+  double tension_intact, tension_broken, cohesion_intact, cohesion_broken, tan_phi;
+  bool healing;
+};
+/// The resultants in scalars (registers), put together once at the end: a FaceForce built field by
+/// field in memory and copied whole stalls the copy's wide loads on the narrow stores.
+struct SegmentSums {
+  double p = 0.0, q = 0.0, moment = 0.0;
+  int links = 0;
+  std::uint8_t any_intact = 0;  // a linked segment is intact (keeps σ_t)
+};
+
+/// One step of the N segments (M6–M12), after the first step's shear restart. NFixed > 0: N = NFixed
+/// known at compile time (the loop unrolled); NFixed = 0: N = n.
+template <int NFixed>
+[[gnu::always_inline]] inline void segments(const SegmentInputs& in, int n, FaceHistory& h, SegmentSums& r) {
+  const int count = NFixed > 0 ? NFixed : n;
+  double sum_p = 0.0, sum_q = 0.0, sum_moment = 0.0;
+  int links = 0;
+  std::uint8_t any_intact = 0;
+#pragma GCC unroll 8
+  for (int i = 0; i < count; ++i) {
+    SegmentState& s = h.seg[static_cast<std::size_t>(i)];
+    const double xi = in.xis[i];
+    const double du = in.du0 + in.du_xi * xi;
+    const double dv = in.dv0 + in.dv_xi * xi;
+    s.u += du;
+    if (!s.linked) [[unlikely]] {  // the hints keep the usual path (linked, holding, below the limit) straight
+      if (s.u < 0.0) continue;  // still apart at ξ_i
+      s.linked = 1;             // unlinked → linked when u(ξ) ≥ 0
+      s.intact = in.healing ? 1 : s.intact;
+      s.pe = in.kn * s.u;
+      s.qe = 0.0;
+    } else {
+      s.pe += in.kn * du;  // (M6)
+      s.qe += in.ks * dv;
+    }
+    const bool intact = s.intact != 0;
+    if (s.pe < (intact ? in.tension_intact : in.tension_broken)) [[unlikely]] {  // (M8, M9): the link breaks and carries nothing
+      s.linked = 0;
+      s.intact = 0;
+      s.pe = s.qe = 0.0;
+      continue;
+    }
+    const double pd = in.eta_n * du * in.inv_dt;  // (M7.1)
+    const double qd = in.eta_s * dv * in.inv_dt;  // (M7.2)
+    const double limit = (intact ? in.cohesion_intact : in.cohesion_broken) + s.pe * in.tan_phi;  // (M10, M11): τ_y A/N
+    // q = Q_e + Q_d, with Q_d = 0 while sliding (Q_e + 0.0 formed as such: −0.0 + 0.0 = +0.0).
+    double q;
+    if (limit <= 0.0) [[unlikely]] {
+      s.qe = 0.0;
+      q = s.qe + 0.0;
+    } else if (std::abs(s.qe) > limit) [[unlikely]] {
+      s.qe = std::copysign(limit, s.qe);
+      q = s.qe + 0.0;
+    } else {
+      q = s.qe + qd;
+    }
+    const double p = s.pe + pd;
+    sum_p += p;
+    sum_q += q;
+    sum_moment += in.a * xi * p;
+    ++links;
+    any_intact |= s.intact;
+  }
+  r.p = sum_p;
+  r.q = sum_q;
+  r.moment = sum_moment;
+  r.links = links;
+  r.any_intact = any_intact;
+}
 }  // namespace face_detail
 
 [[gnu::always_inline]] inline FaceForce face_contact_force(const FaceLaw& law, const FaceConstants& c, const FaceKinematics& k,
@@ -167,68 +244,43 @@ inline Trig trig(double t1, double t2) { return {std::sin(t1), std::cos(t1), std
 
   // Per-segment constants that do not depend on the segment, formed once (the same operations as
   // per segment: −σ_t·A/N with σ_t = 0 for a broken link, c·A/N with c = 0).
-  const double* const xis = kSegmentXi.xi[law.positions == SegmentPositions::ends ? 1 : 0][n];
-  const double kn = c.kn, ks = c.ks, eta_n = c.eta_n, eta_s = c.eta_s, area = c.segment_area;
-  const double tension_intact = -law.tensile_strength * area, tension_broken = -0.0 * area;  // (M8, M9)
-  const double cohesion_intact = law.cohesion * area, cohesion_broken = 0.0 * area;         // (M10)
-  const double tan_phi = law.tan_phi;
-  const bool any_tension = law.tensile_strength > 0.0;
-  const bool healing = law.healing;
+  face_detail::SegmentInputs in;
+  in.xis = kSegmentXi.xi[law.positions == SegmentPositions::ends ? 1 : 0][n];
+  in.a = a;
+  in.du0 = du0, in.du_xi = du_xi, in.dv0 = dv0, in.dv_xi = dv_xi;
+  in.kn = c.kn, in.ks = c.ks, in.eta_n = c.eta_n, in.eta_s = c.eta_s, in.inv_dt = inv_dt;
+  const double area = c.segment_area;
+  in.tension_intact = -law.tensile_strength * area, in.tension_broken = -0.0 * area;  // (M8, M9)
+  in.cohesion_intact = law.cohesion * area, in.cohesion_broken = 0.0 * area;         // (M10)
+  in.tan_phi = law.tan_phi;
+  in.healing = law.healing;
   const bool first = h.geometric_start != 0;
+  // The first step of a geometric start: the linked segments' shear restarts from −K_s Δv (the loop then
+  // adds K_s Δv, as the disk law's e_s = −K_s Δu_s + K_s Δu_s); Δv is formed as in the loop, bit for bit.
+  if (first)
+    for (int i = 0; i < n; ++i) {
+      SegmentState& s = h.seg[static_cast<std::size_t>(i)];
+      if (s.linked) s.qe = -in.ks * (dv0 + dv_xi * in.xis[i]);
+    }
 
-  // The resultants in scalars (registers), put together once at the end: a FaceForce built field by
-  // field in memory and copied whole stalls the copy's wide loads on the narrow stores.
-  double sum_p = 0.0, sum_q = 0.0, sum_moment = 0.0;
-  int links = 0;
-  std::uint8_t any_intact = 0;  // a linked segment is intact (keeps σ_t)
-  for (int i = 0; i < n; ++i) {
-    SegmentState& s = h.seg[static_cast<std::size_t>(i)];
-    const double xi = xis[i];
-    const double du = du0 + du_xi * xi;
-    const double dv = dv0 + dv_xi * xi;
-    s.u += du;
-    if (!s.linked) {
-      if (s.u < 0.0) continue;  // still apart at ξ_i
-      s.linked = 1;             // unlinked → linked when u(ξ) ≥ 0
-      s.intact = healing ? 1 : s.intact;
-      s.pe = kn * s.u;
-      s.qe = 0.0;
-    } else {
-      s.pe += kn * du;  // (M6)
-      if (first) s.qe = -ks * dv;
-      s.qe += ks * dv;
-    }
-    const bool intact = s.intact != 0;
-    if (s.pe < (intact ? tension_intact : tension_broken)) {  // (M8, M9): the link breaks and carries nothing
-      s.linked = 0;
-      s.intact = 0;
-      s.pe = s.qe = 0.0;
-      continue;
-    }
-    double pd = eta_n * du * inv_dt;  // (M7.1)
-    double qd = eta_s * dv * inv_dt;  // (M7.2)
-    const double limit = (intact ? cohesion_intact : cohesion_broken) + s.pe * tan_phi;  // (M10, M11): τ_y A/N
-    if (limit <= 0.0) {
-      s.qe = 0.0;
-      qd = 0.0;
-    } else if (std::abs(s.qe) > limit) {
-      s.qe = std::copysign(limit, s.qe);
-      qd = 0.0;
-    }
-    const double p = s.pe + pd, q = s.qe + qd;
-    sum_p += p;
-    sum_q += q;
-    sum_moment += a * xi * p;
-    ++links;
-    any_intact |= s.intact;
+  // The segment loop with N known at compile time (unrolled: no loop counter, the ξ_i at fixed
+  // offsets); the resultants summed in segment order in every case.
+  face_detail::SegmentSums r;
+  switch (n) {
+    case 1: face_detail::segments<1>(in, n, h, r); break;
+    case 2: face_detail::segments<2>(in, n, h, r); break;
+    case 3: face_detail::segments<3>(in, n, h, r); break;
+    case 4: face_detail::segments<4>(in, n, h, r); break;
+    case 5: face_detail::segments<5>(in, n, h, r); break;
+    default: face_detail::segments<0>(in, n, h, r); break;
   }
   if (first) h.geometric_start = 0;
   FaceForce f;
-  f.p = sum_p;
-  f.q = sum_q;
-  f.p_moment = sum_moment;
-  f.links = links;
-  f.any_tensile = any_tension && any_intact != 0;  // a linked segment with σ_t > 0
+  f.p = r.p;
+  f.q = r.q;
+  f.p_moment = r.moment;
+  f.links = r.links;
+  f.any_tensile = law.tensile_strength > 0.0 && r.any_intact != 0;  // a linked segment with σ_t > 0
   return f;
 }
 

@@ -125,18 +125,33 @@ inline bool may_overstep(std::uint64_t all_below, std::uint64_t not_finite) {
 /// Free elements (K17–K19), the three degrees of freedom in one pass, with the blow-up prefilter on the
 /// increments just computed (the bytes pass the core once). The same operations per element as one
 /// degree of freedom at a time: bit-identical.
-template <bool K19>
+/// With `active` (Masked): elements removed from the run (a silo's outlet) keep their state, as the
+/// element-by-element loop leaves them; the others advance with the same operations (a select per value).
+template <bool K19, bool Masked = false>
 bool integrate_free(double* __restrict vx, double* __restrict vy, double* __restrict om, const double* __restrict fx,
                     const double* __restrict fy, const double* __restrict mom, const double* __restrict wm,
                     const double* __restrict wi, double* __restrict dx, double* __restrict dy, double* __restrict dphi,
                     double* __restrict x, double* __restrict y, double* __restrict phi, const double* __restrict r,
-                    double h, double dt, double limit2r, std::size_t n) {
+                    double h, double dt, double limit2r, std::size_t n,
+                    [[maybe_unused]] const std::uint8_t* __restrict active = nullptr) {
   std::uint64_t all_below = ~std::uint64_t{0}, not_finite = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double ddx = advance_dof<K19>(vx[i], fx[i], wm[i], dx[i], x[i], h, dt);
-    const double ddy = advance_dof<K19>(vy[i], fy[i], wm[i], dy[i], y[i], h, dt);
-    advance_dof<K19>(om[i], mom[i], wi[i], dphi[i], phi[i], h, dt);
-    overstep_bits(ddx, ddy, r[i], limit2r, all_below, not_finite);
+    if constexpr (!Masked) {
+      const double ddx = advance_dof<K19>(vx[i], fx[i], wm[i], dx[i], x[i], h, dt);
+      const double ddy = advance_dof<K19>(vy[i], fy[i], wm[i], dy[i], y[i], h, dt);
+      advance_dof<K19>(om[i], mom[i], wi[i], dphi[i], phi[i], h, dt);
+      overstep_bits(ddx, ddy, r[i], limit2r, all_below, not_finite);
+    } else {
+      const bool on = active[i] != 0;
+      double v[3] = {vx[i], vy[i], om[i]}, d[3] = {dx[i], dy[i], dphi[i]}, q[3] = {x[i], y[i], phi[i]};
+      advance_dof<K19>(v[0], fx[i], wm[i], d[0], q[0], h, dt);
+      advance_dof<K19>(v[1], fy[i], wm[i], d[1], q[1], h, dt);
+      advance_dof<K19>(v[2], mom[i], wi[i], d[2], q[2], h, dt);
+      vx[i] = on ? v[0] : vx[i], vy[i] = on ? v[1] : vy[i], om[i] = on ? v[2] : om[i];
+      dx[i] = on ? d[0] : dx[i], dy[i] = on ? d[1] : dy[i], dphi[i] = on ? d[2] : dphi[i];
+      x[i] = on ? q[0] : x[i], y[i] = on ? q[1] : y[i], phi[i] = on ? q[2] : phi[i];
+      overstep_bits(dx[i], dy[i], r[i], limit2r, all_below, not_finite);
+    }
   }
   return may_overstep(all_below, not_finite);
 }
@@ -837,16 +852,20 @@ int Simulation::threads_used() const {
   return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads_), most));
 }
 
-bool Simulation::all_free(std::size_t b, std::size_t end) const {
-  // The usual case, every element active and free: the same operations per element, in branch-free
-  // loops that the compiler vectorises (the lanes round exactly as the scalar code; no FMA contraction).
-  // Each thread asks it of its own elements (inside the step's job, not serially before it).
+Simulation::Freedom Simulation::freedom(std::size_t b, std::size_t end) const {
+  // The usual cases, every element free and active (or removed from the run): the same operations per
+  // element, in branch-free loops that the compiler vectorises (the lanes round exactly as the scalar
+  // code; no FMA contraction). Each thread asks it of its own elements (inside the step's job, not
+  // serially before it).
   const Elements& e = m_.elements;
-  std::uint8_t all = 1;
+  std::uint8_t all = 1, active_free = 1;
   const std::uint8_t* __restrict act = e.active.data();
   const Motion* __restrict mot = e.motion.data();
-  for (std::size_t i = b; i < end; ++i) all &= (act[i] != 0) & (mot[i] == Motion::free);
-  return all != 0;
+  for (std::size_t i = b; i < end; ++i) {
+    all &= (act[i] != 0) & (mot[i] == Motion::free);
+    active_free &= (act[i] == 0) | (mot[i] == Motion::free);
+  }
+  return all ? Freedom::all_free : active_free ? Freedom::active_free : Freedom::general;
 }
 
 double Simulation::velocity_dt() const {
@@ -855,22 +874,24 @@ double Simulation::velocity_dt() const {
   return (step_ == 0 && m_.numerics.velocity_start == VelocityStart::staggered) ? 0.5 * dt : dt;
 }
 
-Simulation::Overstep Simulation::integrate_range(std::size_t b, std::size_t end, double dt_v, bool free_only,
+Simulation::Overstep Simulation::integrate_range(std::size_t b, std::size_t end, double dt_v, Freedom freedom,
                                                  double limit2, double limit2_next, std::uint8_t& displaced) {
   Elements& e = m_.elements;
   const double dt = m_.numerics.dt;
   const bool k19 = m_.numerics.integrator == Integrator::k19;
   if (limit2_next >= 0.0) {  // right after the integration, while the positions are in the caches
-    const Overstep o = integrate_range(b, end, dt_v, free_only, limit2, -1.0, displaced);
+    const Overstep o = integrate_range(b, end, dt_v, freedom, limit2, -1.0, displaced);
     displaced = any_displaced(e.x.data() + b, e.y.data() + b, x_ref_.data() + b, y_ref_.data() + b, limit2_next, end - b);
     return o;
   }
-  if (free_only) {
-    auto all = k19 ? integrate_free<true> : integrate_free<false>;
+  if (freedom != Freedom::general) {
+    const bool masked = freedom == Freedom::active_free;
+    auto all = k19 ? (masked ? integrate_free<true, true> : integrate_free<true, false>)
+                   : (masked ? integrate_free<false, true> : integrate_free<false, false>);
     const bool may = all(e.vx.data() + b, e.vy.data() + b, e.omega.data() + b, e.fx.data() + b, e.fy.data() + b,
                          e.moment.data() + b, e.inv_mass.data() + b, e.inv_inertia.data() + b, e.dx.data() + b,
                          e.dy.data() + b, e.dphi.data() + b, e.x.data() + b, e.y.data() + b, e.phi.data() + b,
-                         e.radius.data() + b, dt_v, dt, prefilter_limit(limit2), end - b);
+                         e.radius.data() + b, dt_v, dt, prefilter_limit(limit2), end - b, e.active.data() + b);
     return may ? find_overstep(e, b, end, limit2) : Overstep{};
   }
   for (std::size_t i = b; i < end; ++i) {
@@ -953,7 +974,7 @@ void Simulation::step() {
     sweep_scatter(inv_dt);
     if (!plate) {
       displaced_.assign(1, 0);
-      oversteps_.assign(1, integrate_range(0, n, dt_v, all_free(0, n), limit2_step, limit2_next, displaced_[0]));
+      oversteps_.assign(1, integrate_range(0, n, dt_v, freedom(0, n), limit2_step, limit2_next, displaced_[0]));
     }
   } else {  // the same sums, shared as thread_shares.hpp says
     if (shares_.threads != nt) share_work(nt);
@@ -985,7 +1006,7 @@ void Simulation::step() {
       const double c2 = thread_seconds();
       gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
       if (!plate) {  // (K17–K19), and the next step's rebuild test
-        oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, all_free(shares_.first[k], shares_.first[k + 1]), limit2_step,
+        oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, freedom(shares_.first[k], shares_.first[k + 1]), limit2_step,
                                         limit2_next, displaced_[k]);
       }
       busy_[k].seconds += (c1 - c0) + (thread_seconds() - c2);
@@ -998,13 +1019,13 @@ void Simulation::step() {
     advance_base_plate();
     std::uint8_t unused = 0;
     if (nt == 1) {
-      oversteps_.assign(1, integrate_range(0, n, dt_v, all_free(0, n), limit2_step, -1.0, unused));
+      oversteps_.assign(1, integrate_range(0, n, dt_v, freedom(0, n), limit2_step, -1.0, unused));
     } else {
       oversteps_.assign(static_cast<std::size_t>(nt), Overstep{});
       auto body = [&](int t) {
         const std::size_t k = static_cast<std::size_t>(t);
         std::uint8_t none = 0;
-        oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, all_free(shares_.first[k], shares_.first[k + 1]), limit2_step, -1.0, none);
+        oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, freedom(shares_.first[k], shares_.first[k + 1]), limit2_step, -1.0, none);
       };
       workers(nt).run(body);
     }

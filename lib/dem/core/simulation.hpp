@@ -16,6 +16,12 @@
 #include "dem/core/thread_shares.hpp"
 #include "dem/core/worker_threads.hpp"
 
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define DEM2D_CLONES_AVX2 [[gnu::target_clones("avx2", "default")]]
+#else
+#define DEM2D_CLONES_AVX2
+#endif
+
 namespace dem {
 
 struct Energies {
@@ -145,9 +151,12 @@ class Simulation {
   // at once to its elements, in slot order: to every element (one thread, Shares = false), or only to the
   // elements that are not shared between threads (thread_shares.hpp; gather_forces sums the shared ones).
   template <bool Shares> void sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t e);
-  template <bool Shares> void sweep_face_pairs(double inv_dt, std::size_t b, std::size_t e);
+  // The face sweeps in two builds, picked at start-up: plain x86-64 and AVX2 (three-operand VEX code, no
+  // FMA: the same rounding bit for bit; bench/README.md, "PRE faces: the segment loop"). g++ only: clang
+  // (the sanitizer build) does not clone function templates.
+  template <bool Shares> DEM2D_CLONES_AVX2 void sweep_face_pairs(double inv_dt, std::size_t b, std::size_t e);
   template <bool Shares> void sweep_linear_walls(double inv_dt, std::size_t b, std::size_t e);
-  template <bool Shares> void sweep_face_walls(double inv_dt, std::size_t b, std::size_t e);
+  template <bool Shares> DEM2D_CLONES_AVX2 void sweep_face_walls(double inv_dt, std::size_t b, std::size_t e);
   void sweep_scatter(double inv_dt);  // one thread: every slot, scattering into the elements
   // Share `share` of a step on several threads: the slots its elements compute, scattered into its private
   // elements (from m g if from_weight, else onto the forces they hold); then, after a barrier,
@@ -158,11 +167,14 @@ class Simulation {
   void sum_wall_forces();
   void index_contacts();  // after every change of the slot lists (rebuild, restore)
   void share_work(int threads);  // shares_ for this many threads (after index_contacts or set_threads)
-  bool all_free(std::size_t b, std::size_t e) const;  // every element of [b, e) active and free
+  // How integrate_range may advance elements [b, e): every one active and free (one vectorised pass); the
+  // active ones free, some removed from the run (the same pass with a select); or element by element.
+  enum class Freedom : std::uint8_t { general, active_free, all_free };
+  Freedom freedom(std::size_t b, std::size_t e) const;
   double velocity_dt() const;  // the step of (K17): Δt, or Δt/2 at a staggered start
   // (K17–K19) over elements [b, e), then the blow-up test over them (overstep())
   // and, if limit2_next >= 0, the next step's rebuild test over them (displaced: any_displaced)
-  Overstep integrate_range(std::size_t b, std::size_t e, double dt_v, bool free_only, double limit2,
+  Overstep integrate_range(std::size_t b, std::size_t e, double dt_v, Freedom freedom, double limit2,
                            double limit2_next, std::uint8_t& displaced);
   // The rebuild limit of the next step if it is known now (static walls, no base plate), else −1.
   double next_rebuild_limit2() const;
