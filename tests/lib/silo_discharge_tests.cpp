@@ -127,9 +127,12 @@ TEST_CASE("A disk below the outlet line is removed exactly once, counted with it
   CHECK(rows.back()[2] == Approx(0.005).margin(1e-4));  // the disk on the floor stays
   // directly: a disk put below the line is removed by the first call, not by the second
   dem::Model m = c.model;
+  CHECK_FALSE(dem::may_discharge(m));  // the cheap test the run makes before taking the model mutable
   CHECK(dem::remove_discharged(m) == 0);
   m.elements.y[1] = -0.0101;
+  CHECK(dem::may_discharge(m));
   CHECK(dem::remove_discharged(m) == 1);
+  CHECK_FALSE(dem::may_discharge(m));  // the removed disk no longer counts
   CHECK(dem::remove_discharged(m) == 0);
   CHECK(m.elements.active[1] == 0);
   CHECK(m.elements.active[0] == 1);

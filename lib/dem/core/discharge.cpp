@@ -38,11 +38,16 @@ bool any_may_be_below(const OutletLine& line, const double* __restrict x, const 
 
 }  // namespace
 
+bool may_discharge(const Model& m) {
+  if (!m.discharge.enabled) return false;
+  const Elements& e = m.elements;
+  return any_may_be_below(OutletLine(m), e.x.data(), e.y.data(), e.active.data(), e.size());
+}
+
 std::size_t remove_discharged(Model& m) {
-  if (!m.discharge.enabled) return 0;
+  if (!may_discharge(m)) return 0;
   const OutletLine line(m);
   Elements& e = m.elements;
-  if (!any_may_be_below(line, e.x.data(), e.y.data(), e.active.data(), e.size())) return 0;
   std::size_t n = 0;
   for (std::size_t i = 0; i < e.size(); ++i)
     if (e.active[i] && line.below(e.x[i], e.y[i]) > 0.0) {

@@ -23,6 +23,10 @@ struct Discharge {
 /// How far below the outlet line, along g, the point (x, y) lies [m] (> 0: below it).
 double below_outlet(const Model& m, double x, double y);
 
+/// Whether an active element may lie below the outlet line (a cheap test that never misses one: false means
+/// remove_discharged would remove nothing), so a caller can skip taking the model mutable.
+bool may_discharge(const Model& m);
+
 /// Removes (active = 0) every active element whose centre lies below the outlet line. Returns how many.
 std::size_t remove_discharged(Model& m);
 
