@@ -274,6 +274,13 @@ int main(int argc, char** argv) {
                   "The docs/ folder rendered into the page, every citation linked to it (default: ./docs, else the "
                   "source tree's)");
 
+  std::string bench_dir;
+  rep->add_option("--bench", bench_dir,
+                  "The speed benchmark shown in the report: a bench/suite.py output folder (table.md, cost.svg) or "
+                  "a folder of kept tables, of which the name that sorts last (default: ./bench/results, else the "
+                  "source tree's)")
+      ->check(CLI::ExistingDirectory);
+
   CLI11_PARSE(app, argc, argv);
   dem::install_interrupt_handlers();  // SIGINT / SIGTERM: runs stop at the next step and write everything
   std::signal(SIGXFSZ, SIG_IGN);      // a file size limit makes writes fail (reported, exit 4) instead of killing
@@ -320,6 +327,9 @@ int main(int argc, char** argv) {
       o.provenance["working directory"] = fs::current_path().string();
       o.docs_dir = !docs_dir.empty() ? fs::path(docs_dir)
                    : fs::is_directory("docs") ? fs::path("docs") : fs::path(DEM2D_SOURCE_DIR) / "docs";
+      o.bench_dir = !bench_dir.empty() ? fs::path(bench_dir)
+                    : fs::is_directory("bench/results") ? fs::path("bench/results")
+                                                       : fs::path(DEM2D_SOURCE_DIR) / "bench/results";
       print_summary(studies_dir);
       const report::Written w = report::write_report(o);
       fmt::print("report: {} studies, {} figures\n  {}\n  {}\n", w.studies, w.figures, fs::absolute(w.html).string(),

@@ -137,7 +137,7 @@ def svg_plot(series, path):
     x1, y1 = max(x1, x0 + 1), max(y1, y0 + 0.5)
     px = lambda n: L + (math.log10(n) - x0) / (x1 - x0) * (W - L - R)
     py = lambda c: H - B - (math.log10(c) - y0) / (y1 - y0) * (H - B - T)
-    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" font-family="sans-serif" font-size="12">',
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" viewBox="0 0 {W} {H}" font-family="sans-serif" font-size="12">',
            f'<rect width="{W}" height="{H}" fill="white"/>',
            f'<line x1="{L}" y1="{H - B}" x2="{W - R}" y2="{H - B}" stroke="black"/>',
            f'<line x1="{L}" y1="{T}" x2="{L}" y2="{H - B}" stroke="black"/>']

@@ -204,6 +204,11 @@ std::string render_md(const std::string& doc, const std::string& text, std::map<
 
 }  // namespace
 
+std::string markdown_html(const std::string& doc, const std::string& text) {
+  std::map<std::string, std::string> anchors;  // a text's own headings only: nothing cites them
+  return render_md(doc, text, anchors);
+}
+
 CitedDocs render_cited_docs(const fs::path& docs_dir) {
   CitedDocs d;
   const std::vector<std::pair<std::string, std::string>> docs = {

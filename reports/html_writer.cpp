@@ -290,6 +290,7 @@ std::string contents_nav(const ReportContent& content) {
     out += fmt::format("<li><a href=\"#{}\">{}</a> {}</li>\n", study_anchor(study.source), escape(title),
                        badge(study_status(study.source)));
   }
+  if (!content.speed_html.empty()) out += "<li><a href=\"#speed\">Speed: dem2d beside LAMMPS</a></li>\n";
   if (!content.docs_html.empty())
     out += "<li><a href=\"#cited\">Cited documentation</a>: <a href=\"#doc-model\">the physics (model.md)</a>, "
            "<a href=\"#doc-references\">the reference solutions (references.md)</a>, "
@@ -311,6 +312,7 @@ std::string html_page(const ReportContent& content) {
   out += sensitivity_overview_section(content);
   out += summary_section(content);
   for (const auto& study : content.studies) out += study_section(study);
+  out += content.speed_html;
   if (!content.docs_html.empty())
     out += "<section id=\"cited\">\n<h2>Cited documentation</h2>\n" + content.docs_html + "</section>\n";
   out +=

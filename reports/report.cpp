@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "cited_docs.hpp"
+#include "speed_table.hpp"
 #include "html_writer.hpp"
 #include "markdown_writer.hpp"
 #include "report_content.hpp"
@@ -159,6 +160,15 @@ Written write_report(const Options& options, const fs::path& gnuplot) {
   written.markdown = options.out_dir / "index.md";
   const CitedDocs docs = options.docs_dir.empty() ? CitedDocs{} : render_cited_docs(options.docs_dir);
   content.docs_html = docs.html;
+  if (const auto speed = options.bench_dir.empty() ? std::nullopt : find_speed_table(options.bench_dir)) {
+    std::string link;
+    if (!speed->plot_svg.empty()) {  // the Markdown twin links its copy, as it does the studies' figures
+      write_text(figures_dir / "speed_cost.svg", speed->plot_svg);
+      link = "figures/speed_cost.svg";
+    }
+    content.speed_html = speed_html(*speed);
+    content.speed_markdown = speed_markdown(*speed, link);
+  }
   write_text(written.html, link_citations(html_page(content), docs));
   write_text(written.markdown, markdown_page(content));
   written.studies = static_cast<int>(content.studies.size());

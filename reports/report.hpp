@@ -17,6 +17,8 @@ struct Options {
   nlohmann::json provenance;          // optional: code_version, build_type, machine, date, ...
   std::filesystem::path docs_dir;     // the repository's docs/: rendered into the page, citations linked
                                       // to it (cited_docs.hpp); empty or missing: citations stay text
+  std::filesystem::path bench_dir;    // the speed benchmark's table and plot (speed_table.hpp: a bench/suite.py
+                                      // output folder, or bench/results); empty or holding none: no section
 };
 
 struct Written {

@@ -33,6 +33,7 @@ struct ReportContent {
   std::vector<HeaderField> header;
   std::vector<StudyReport> studies;
   std::string docs_html;  // the cited documentation (cited_docs.hpp), "" if docs/ was not found
+  std::string speed_html, speed_markdown;  // the speed benchmark's section (speed_table.hpp), "" if none
 };
 
 struct Counts {

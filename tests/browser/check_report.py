@@ -47,7 +47,7 @@ PROBE = r"""
                   y: Math.round(b.top + b.height / 2), anchor: anchor});
     });
     out.figures.push({caption: caption.trim().slice(0, 120), svg: !!svg, width: r.width, height: r.height,
-                      paths: svg ? svg.querySelectorAll('path').length : 0,
+                      paths: svg ? svg.querySelectorAll('path, polyline').length : 0,  // gnuplot draws paths, bench/suite.py polylines
                       missing: !!fig.querySelector('.missing-figure'), texts: texts});
   });
   document.querySelectorAll('img').forEach(function (img) {

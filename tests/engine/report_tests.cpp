@@ -314,3 +314,48 @@ TEST_CASE("several reference curves in one figure get distinct dash patterns, on
   CHECK(two.find("with lines dt 2 lw 2.5 lc rgb '#000000' title 'Bray and Goodman'") != std::string::npos);
   CHECK(two.find("with lines dt 4 lw 2.5 lc rgb '#000000' title 'PRE model'") != std::string::npos);
 }
+
+TEST_CASE("the speed benchmark's newest table and its plot are shown, an older one is not", "[report][speed]") {
+  TempDir tmp;
+  write(tmp.path / "studies/small_rotation/result.json", direction_study);
+  const fs::path kept = tmp.path / "bench_results";  // as bench/results: tables by date, plots beside them
+  write(kept / "suite_2026-01-05.md", "| settle | after 1T / LAMMPS |\n|---|---|\n| 1e4 disks | 2.22 |\n");
+  write(kept / "cost_2026-01-05.svg", "<svg width=\"10\" height=\"10\"><text>older plot</text></svg>");
+  write(kept / "suite_2026-02-01.md", "Machine: test host.\n\n| settle | after 1T / LAMMPS |\n|---|---|\n| 1e4 disks | 3.76 |\n");
+  write(kept / "cost_2026-02-01.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"640\" height=\"420\"><text>newer plot</text></svg>");
+  write(kept / "notes.md", "| not | a table of the suite |\n");
+  report::Options options;
+  options.studies_dir = tmp.path / "studies";
+  options.out_dir = tmp.path / "out";
+  options.bench_dir = kept;
+  report::write_report(options);
+  const std::string html = read(tmp.path / "out/index.html"), md = read(tmp.path / "out/index.md");
+  CHECK(count(html, "<section id=\"speed\">") == 1);
+  CHECK(count(html, "href=\"#speed\"") == 1);  // in the contents
+  CHECK(html.find("<td>3.76</td>") != std::string::npos);
+  CHECK(html.find("2.22") == std::string::npos);
+  CHECK(html.find("newer plot") != std::string::npos);
+  CHECK(html.find("older plot") == std::string::npos);
+  CHECK(html.find("viewBox=\"0 0 640 420\"") != std::string::npos);  // scales without stretching its box
+  CHECK(html.find("suite_2026-02-01.md") != std::string::npos);
+  CHECK(md.find("| 1e4 disks | 3.76 |") != std::string::npos);
+  CHECK(md.find("](figures/speed_cost.svg)") != std::string::npos);
+  CHECK(read(tmp.path / "out/figures/speed_cost.svg").find("newer plot") != std::string::npos);
+
+  // a suite's own output folder (table.md, cost.svg) is taken as it is
+  const fs::path suite = tmp.path / "suite_out";
+  write(suite / "table.md", "| settle | after 1T / LAMMPS |\n|---|---|\n| 1e5 disks | 3.96 |\n");
+  options.bench_dir = suite;
+  options.out_dir = tmp.path / "out2";
+  report::write_report(options);
+  const std::string html2 = read(tmp.path / "out2/index.html");
+  CHECK(html2.find("<td>3.96</td>") != std::string::npos);
+  CHECK(count(html2, "<figure style=\"max-width: 760px\">") == 0);  // no plot there, none shown
+  CHECK_FALSE(fs::exists(tmp.path / "out2/figures/speed_cost.svg"));
+
+  // no tables: no section
+  options.bench_dir = tmp.path / "studies";
+  options.out_dir = tmp.path / "out3";
+  report::write_report(options);
+  CHECK(read(tmp.path / "out3/index.html").find("id=\"speed\"") == std::string::npos);
+}
