@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "cited_docs.hpp"
 #include "inline_svg.hpp"
@@ -83,11 +86,16 @@ std::string speed_html(const SpeedTable& t) {
 }
 
 std::string speed_markdown(const SpeedTable& t, const std::string& plot_link) {
-  std::string about_md = about;
-  for (const std::string tag : {"<code>", "</code>"})
-    for (auto p = about_md.find(tag); p != std::string::npos; p = about_md.find(tag)) about_md.replace(p, tag.size(), "`");
-  std::string out = "## Speed: dem2d beside LAMMPS\n\n" + about_md + " Table: `" + t.table.filename().string() + "`.\n\n";
-  if (!plot_link.empty()) out += "![cost per element-step against size](" + plot_link + ")\n\n";
+  std::string about_md;  // the same words, `code` for <code>
+  for (std::string_view rest = about; !rest.empty();) {
+    const auto p = rest.find('<');
+    about_md += rest.substr(0, p);
+    if (p == std::string_view::npos) break;
+    about_md += '`';
+    rest = rest.substr(rest.find('>', p) + 1);
+  }
+  std::string out = fmt::format("## Speed: dem2d beside LAMMPS\n\n{} Table: `{}`.\n\n", about_md, t.table.filename().string());
+  if (!plot_link.empty()) out += fmt::format("![cost per element-step against size]({})\n\n", plot_link);
   return out + t.table_md + "\n\n";
 }
 
