@@ -189,6 +189,30 @@ struct SegmentSums {
   any_intact |= s.intact;
 }
 
+/// Segment i when it is on segment_block's usual path (the same test in scalars, straight-line): its step
+/// and sums as `segment` forms them. Returns false, having changed nothing, off that path.
+[[gnu::always_inline]] inline bool segment_usual(const SegmentInputs& in, int i, FaceHistory& h, double& sum_p,
+                                                 double& sum_q, double& sum_moment) {
+  SegmentState& s = h.seg[static_cast<std::size_t>(i)];
+  const double xi = in.xis[i];
+  const double du = in.du0 + in.du_xi * xi;
+  const double dv = in.dv0 + in.dv_xi * xi;
+  const double pe = s.pe + in.kn * du;  // (M6)
+  const double qe = s.qe + in.ks * dv;
+  const double limit = in.cohesion_intact + pe * in.tan_phi;  // (M10, M11)
+  if (!((s.linked == 1) & (s.intact == 1) & (pe >= in.tension_intact) & (std::abs(qe) < limit))) [[unlikely]]
+    return false;
+  s.u += du;
+  s.pe = pe;
+  s.qe = qe;
+  const double p = pe + in.eta_n * du * in.inv_dt;  // (M7.1)
+  const double q = qe + in.eta_s * dv * in.inv_dt;  // (M7.2)
+  sum_p += p;
+  sum_q += q;
+  sum_moment += in.a * xi * p;
+  return true;
+}
+
 // Four segments in the lanes of one vector (GCC/clang vector extensions: AVX2 registers in the sweeps'
 // AVX2 clones, SSE2 pairs otherwise). Every lane performs the scalar segment's operations on the same
 // operands (no FMA: see lib/CMakeLists.txt), so the results are the same bit for bit.
@@ -228,14 +252,14 @@ template <int L>
   qe += DEM2D_SPLAT(in.ks) * dv;
   const V4d limit = DEM2D_SPLAT(in.cohesion_intact) + pe * DEM2D_SPLAT(in.tan_phi);  // (M10, M11)
   const V4d abs_qe = DEM2D_AS_D(DEM2D_AS_L(qe) & 0x7fffffffffffffff);
-  // Off the usual path: not (linked, intact), the scalar segment's tension cut-off, τ_y ≤ 0 or sliding
-  // (ordered comparisons as there: a NaN stays on the usual path in both).
-  V4l off = ((DEM2D_AS_L(flags) & 0xffff) != 0x0101) | (pe < DEM2D_SPLAT(in.tension_intact)) | (limit <= 0.0) |
-            (abs_qe > limit);
-  if constexpr (L == 3) off &= V4l{-1, -1, -1, 0};
-  V4l any = off | __builtin_shufflevector(off, off, 2, 3, 0, 1);
-  any |= __builtin_shufflevector(any, any, 1, 0, 3, 2);
-  if (any[0] != 0) [[unlikely]] return false;
+  // On the usual path, tested so that every lane taken here the scalar segment takes too: linked and intact,
+  // P_e ≥ −σ_t A/N (the scalar cut-off is P_e < −σ_t A/N) and |Q_e| < τ_y A/N (so τ_y > 0 and no sliding). The
+  // boundaries that this leaves out (|Q_e| = τ_y A/N, NaN) go the scalar way, with the same results.
+  V4l on = ((DEM2D_AS_L(flags) & 0xffff) == 0x0101) & (pe >= DEM2D_SPLAT(in.tension_intact)) & (abs_qe < limit);
+  if constexpr (L == 3) on |= V4l{0, 0, 0, -1};  // segment 3 is not part of the face
+  V4l all = on & __builtin_shufflevector(on, on, 2, 3, 0, 1);
+  all &= __builtin_shufflevector(all, all, 1, 0, 3, 2);
+  if (all[0] != -1) [[unlikely]] return false;
   const V4d pd = DEM2D_SPLAT(in.eta_n) * du * DEM2D_SPLAT(in.inv_dt);  // (M7.1)
   const V4d qd = DEM2D_SPLAT(in.eta_s) * dv * DEM2D_SPLAT(in.inv_dt);  // (M7.2)
   const V4d p = pe + pd, q = qe + qd;
@@ -282,7 +306,12 @@ template <int NFixed>
       links = L;
       any_intact = 1;
 #pragma GCC unroll 8
-      for (int i = L; i < NFixed; ++i) segment(in, i, h, sum_p, sum_q, sum_moment, links, any_intact);
+      for (int i = L; i < NFixed; ++i) {
+        if (segment_usual(in, i, h, sum_p, sum_q, sum_moment)) [[likely]]
+          ++links;
+        else
+          segment(in, i, h, sum_p, sum_q, sum_moment, links, any_intact);
+      }
     } else {
 #pragma GCC unroll 8
       for (int i = 0; i < NFixed; ++i) segment(in, i, h, sum_p, sum_q, sum_moment, links, any_intact);
