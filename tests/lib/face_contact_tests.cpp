@@ -9,8 +9,11 @@
 //   u(ξ) = −r1(1 − cos θ) − aξ sin θ,   v(ξ) = r1 sin θ + aξ(cos θ − 1)        (M2 with ξ → −ξ)
 // These hand-derived forms are the expectations below.
 #include <catch2/catch.hpp>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "dem/contact/face_contact.hpp"
@@ -539,5 +542,93 @@ TEST_CASE("face: under the same rigid rotation the linearised law errs by second
     // second order per step: the whole 90° turn leaves an approach error of about D Θ Δ/2
     const double theta = 0.5 * std::numbers::pi;
     CHECK_THAT(h.seg[0].pe / kn, WithinRel(-dist * theta * step / 2, 1e-3));
+  }
+}
+
+namespace {
+bool same_bits(double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); }
+
+// The face law's segment loop for N = 3, 4, 5 runs segments 0 … min(N, 4) − 1 in vector lanes when all of them
+// are on the usual path (face_detail::segment_block); the generic loop (segments<0>) is the scalar law.
+template <int N>
+void check_lanes_against_scalar(const dem::face_detail::SegmentInputs& in, const dem::FaceHistory& h0, int& vector_path) {
+  using namespace dem::face_detail;
+  dem::FaceHistory hv = h0, hs = h0, hb = h0;
+  SegmentSums rv, rs;
+  segments<N>(in, N, hv, rv);
+  segments<0>(in, N, hs, rs);
+  V4d sums{0.0, 0.0, 0.0, 0.0};
+  if (segment_block<N < 4 ? N : 4>(in, hb, sums)) ++vector_path;
+  CHECK(same_bits(rv.p, rs.p));
+  CHECK(same_bits(rv.q, rs.q));
+  CHECK(same_bits(rv.moment, rs.moment));
+  CHECK(rv.links == rs.links);
+  CHECK((rv.any_intact != 0) == (rs.any_intact != 0));
+  for (int i = 0; i < dem::kMaxSegments; ++i) {
+    const auto& v = hv.seg[static_cast<std::size_t>(i)];
+    const auto& s = hs.seg[static_cast<std::size_t>(i)];
+    CAPTURE(i);
+    CHECK(same_bits(v.u, s.u));
+    CHECK(same_bits(v.pe, s.pe));
+    CHECK(same_bits(v.qe, s.qe));
+    CHECK(v.linked == s.linked);
+    CHECK(v.intact == s.intact);
+  }
+}
+
+template <int N>
+int lanes_against_scalar_trials() {
+  std::mt19937_64 rng(20261123 + N);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_real_distribution<double> pos(0.0, 1.0);
+  int vector_path = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    dem::face_detail::SegmentInputs in{};
+    in.xis = dem::kSegmentXi.xi[0][N];
+    in.a = a;
+    in.du0 = 1e-6 * unit(rng), in.du_xi = 1e-6 * unit(rng), in.dv0 = 1e-6 * unit(rng), in.dv_xi = 1e-6 * unit(rng);
+    in.kn = kn, in.ks = ks, in.eta_n = 100.0 * pos(rng), in.eta_s = 50.0 * pos(rng), in.inv_dt = inv_dt;
+    // every other trial strong (the usual path), the others near the strengths (breaks, sliding, τ_y < 0)
+    const double strength = trial % 2 == 0 ? 1e6 : 3.0 * pos(rng);
+    in.tension_intact = -strength, in.tension_broken = -0.0;
+    in.cohesion_intact = trial % 2 == 0 ? 1e6 : 2.0 * pos(rng), in.cohesion_broken = 0.0;
+    in.tan_phi = pos(rng);
+    in.healing = trial % 3 == 0;
+    dem::FaceHistory h;
+    for (auto& s : h.seg) {
+      s.u = 1e-6 * unit(rng);
+      s.pe = 3.0 * unit(rng);
+      s.qe = 3.0 * unit(rng);
+      s.linked = (trial % 2 == 0 || pos(rng) < 0.9) ? 1 : 0;
+      s.intact = (trial % 2 == 0 || pos(rng) < 0.8) ? 1 : 0;
+      if (!s.linked) s.pe = s.qe = 0.0;
+    }
+    if (trial % 4 == 3) {  // weak, but segments 0..3 well inside their limits: the lanes go, segment 4 decides
+      in.tan_phi = 0.5 + 0.5 * pos(rng);
+      for (std::size_t i = 0; i < 4; ++i) {
+        auto& s = h.seg[i];
+        s.linked = s.intact = 1, s.pe = 3.0 + pos(rng), s.qe = 0.1 * unit(rng);
+      }
+    }
+    // beyond the face (i ≥ N): a state off the usual path, which the lanes must neither test nor change
+    for (std::size_t i = N; i < h.seg.size(); ++i) h.seg[i].linked = 0, h.seg[i].intact = 7, h.seg[i].pe = -1e300;
+    if (trial == 1) {  // signed zeros: P = −0.0 on the segments with ξ < 0, Σ starts from +0.0
+      in.du0 = -0.0, in.du_xi = 0.0, in.dv0 = -0.0, in.dv_xi = 0.0, in.eta_n = in.eta_s = 1.0;
+      in.tension_intact = -1e6, in.cohesion_intact = 1e6;
+      for (auto& s : h.seg) s.u = 0.0, s.pe = s.qe = -0.0, s.linked = s.intact = 1;
+    }
+    CAPTURE(trial);
+    check_lanes_against_scalar<N>(in, h, vector_path);
+  }
+  return vector_path;
+}
+}  // namespace
+
+TEST_CASE("face: segments in vector lanes give the scalar law's states and sums bit for bit, N = 3 4 5", "[face]") {
+  // Both ways must be exercised: the strong trials (half) and most of every fourth take the lanes.
+  for (const int taken : {lanes_against_scalar_trials<3>(), lanes_against_scalar_trials<4>(), lanes_against_scalar_trials<5>()}) {
+    CAPTURE(taken);
+    CHECK(taken > 2500);
+    CHECK(taken < 3500);
   }
 }
