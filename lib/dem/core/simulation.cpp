@@ -1294,9 +1294,11 @@ Energies Simulation::energies() const {
   if (nt == 1 || chunks < 2) {
     sum_chunks(0, chunks);
   } else {
-    auto body = [&](int t) {
+    auto body = [&](int t) {  // a share of the element chunks and one of the slot chunks (they cost differently)
       const auto q = static_cast<std::size_t>(t), m = static_cast<std::size_t>(nt);
-      sum_chunks(chunks * q / m, chunks * (q + 1) / m);
+      const std::size_t ec = element_chunks, sc = chunks - element_chunks;
+      sum_chunks(ec * q / m, ec * (q + 1) / m);
+      sum_chunks(ec + sc * q / m, ec + sc * (q + 1) / m);
     };
     workers(nt).run(body);
   }
