@@ -1292,14 +1292,14 @@ Energies Simulation::energies() const {
   };
   auto sum_chunks = [&](std::size_t c0, std::size_t c1) {
     for (std::size_t c = c0; c < c1; ++c) {
-      Energies& en = energy_chunks_[c];
-      en = {};
+      Energies en;  // a local: the sums stay in registers
       if (c < element_chunks) {
         sum_elements(c * kEnergyChunk, std::min(n, (c + 1) * kEnergyChunk), en);
       } else {
         const std::size_t b = (c - element_chunks) * kEnergyChunk;
         sum_slots(b, std::min(slots, b + kEnergyChunk), en);
       }
+      energy_chunks_[c] = en;
     }
   };
   const int nt = threads_used();
