@@ -284,7 +284,9 @@ TEST_CASE("Rebuilds at almost every step give the same candidates and slots bit 
   const std::vector<ThreadCase> cases = {
       {"cases/bench/settle_10k.toml", {"numerics.duration=3.2e-3", "numerics.skin=1e-7"}, 800},
       {"cases/beam/mortar_2x8.toml", {"numerics.duration=2e-3", "numerics.skin=1e-9"}, 1500},
-      {"cases/silo/static_11_12.toml", {"numerics.duration=0.05 s", "numerics.skin=1e-7", "numerics.reorder_every=3"}, 500},
+      {"cases/silo/static_11_12.toml",
+       {"numerics.duration=0.05 s", "numerics.skin=1e-7", "numerics.reorder_every=3"},
+       500},
   };
   for (const ThreadCase& tc : cases) {
     CAPTURE(tc.path);

@@ -44,9 +44,11 @@ struct ContactIndex {
     build_other(elements, face_pairs, linear_walls, face_walls);
   }
   /// The sizes the entries can hold (before build_linear and build_other, which two threads may run at once).
+  static bool fits(std::size_t linear_pairs, std::size_t others) {
+    return linear_pairs < (std::size_t{1} << 31) && others < (std::size_t{1} << 29);
+  }
   static void check(std::size_t linear_pairs, std::size_t others) {
-    if (linear_pairs >= (std::size_t{1} << 31) || others >= (std::size_t{1} << 29))
-      throw std::length_error("contact index: too many contact slots");
+    if (!fits(linear_pairs, others)) throw std::length_error("contact index: too many contact slots");
   }
   /// The row of the linear pairs.
   template <class LinearPairs>

@@ -410,8 +410,12 @@ void Simulation::rebuild() {
     return;
   }
   WorkerThreads& pool = workers(nt);
-  auto body = [&](int t) { rebuild_on(Team{&pool, t, nt}); };
+  bool done = true;
+  auto body = [&](int t) {
+    if (!rebuild_on(Team{&pool, t, nt}) && t == 0) done = false;
+  };
   pool.run(body);
+  if (!done) ContactIndex::check(linear_pairs_.size(), face_pairs_.size() + linear_walls_.size() + face_walls_.size());
 }
 
 void Simulation::wall_candidates(std::uint32_t b, std::uint32_t end, std::vector<LinearSlot>& lin,
@@ -441,7 +445,7 @@ void Simulation::wall_candidates(std::uint32_t b, std::uint32_t end, std::vector
   }
 }
 
-void Simulation::rebuild_on(const Team& team) {
+bool Simulation::rebuild_on(const Team& team) {
   const int t = team.t, nt = team.nt;
   const auto k = static_cast<std::size_t>(t);
   const Elements& e = m_.elements;
@@ -469,7 +473,8 @@ void Simulation::rebuild_on(const Team& team) {
     if (rebuild_cells_) search_.collect(e, skin_, rebuild_first_[k], rebuild_first_[k + 1], pairs);
     wall_candidates(rebuild_first_[k], rebuild_first_[k + 1], lin, face);
     // the positions of this rebuild, for the next rebuild test
-    const auto b = static_cast<std::ptrdiff_t>(rebuild_first_[k]), end = static_cast<std::ptrdiff_t>(rebuild_first_[k + 1]);
+    const auto b = static_cast<std::ptrdiff_t>(rebuild_first_[k]);
+    const auto end = static_cast<std::ptrdiff_t>(rebuild_first_[k + 1]);
     std::copy(e.x.begin() + b, e.x.begin() + end, x_ref_.begin() + b);
     std::copy(e.y.begin() + b, e.y.begin() + end, y_ref_.begin() + b);
   }
@@ -528,7 +533,13 @@ void Simulation::rebuild_on(const Team& team) {
   team.sync();
   // The contact index (as index_contacts()): its linear row on thread 0; the rest of it, and the shares,
   // on thread 1 (or 0).
-  if (t == 0) ContactIndex::check(linear_pairs_.size(), face_pairs_.size() + linear_walls_.size() + face_walls_.size());
+  // Too many slots for the index: every thread sees the same sizes and leaves; the caller throws after the job
+  // (an exception inside a job would leave the other threads at a barrier).
+  const std::size_t others = face_pairs_.size() + linear_walls_.size() + face_walls_.size();
+  if (!ContactIndex::fits(linear_pairs_.size(), others)) {
+    if (nt == 1) ContactIndex::check(linear_pairs_.size(), others);
+    return false;
+  }
   if (t == 0) index_.build_linear(e.size(), linear_pairs_.pair);
   if (t == other) {
     index_.build_other(e.size(), face_pairs_, linear_walls_, face_walls_);
@@ -538,6 +549,7 @@ void Simulation::rebuild_on(const Team& team) {
     if (threads_used() > 1) share_work(threads_used());
   }
   team.sync();
+  return true;
 }
 
 void Simulation::index_contacts() {
@@ -1163,6 +1175,7 @@ void Simulation::step() {
     if (step_ > 0 && !tested && !test) rebuild();
     displaced_.assign(static_cast<std::size_t>(nt), 0);
     oversteps_.assign(static_cast<std::size_t>(nt), Overstep{});
+    bool index_failed = false;
     auto body = [&](int t) {  // thread t takes share t
       const std::size_t k = static_cast<std::size_t>(t);
       if (test) {  // needs_rebuild() split over the threads (an OR of the same per-element tests)
@@ -1173,7 +1186,10 @@ void Simulation::step() {
         pool.barrier();
         std::uint8_t any = 0;
         for (std::uint8_t d : displaced_) any |= d;
-        if (any) rebuild_on(Team{&pool, t, nt});  // new slot lists and shares, for every thread after it
+        if (any && !rebuild_on(Team{&pool, t, nt})) {  // new slot lists and shares, for every thread after it
+          if (t == 0) index_failed = true;  // too many slots: thrown after the job
+          return;
+        }
       }
       const double c0 = thread_seconds();  // the thread's work on its share, without the barrier's wait
       sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
@@ -1184,7 +1200,8 @@ void Simulation::step() {
       const std::size_t mid = plate ? end : std::max<std::size_t>(b, shares_.private_from[k]);
       Overstep late;
       std::uint8_t displaced_late = 0;
-      if (mid < end) late = integrate_range(mid, end, dt_v, freedom(mid, end), limit2_step, limit2_next, displaced_late);
+      if (mid < end)
+        late = integrate_range(mid, end, dt_v, freedom(mid, end), limit2_step, limit2_next, displaced_late);
       const double c1 = thread_seconds();
       pool.barrier();
       const double c2 = thread_seconds();
@@ -1200,6 +1217,8 @@ void Simulation::step() {
       busy_[k].seconds += (c1 - c0) + (thread_seconds() - c2);
     };
     pool.run(body);
+    if (index_failed)
+      ContactIndex::check(linear_pairs_.size(), face_pairs_.size() + linear_walls_.size() + face_walls_.size());
     balance_if_uneven();  // the next step's shares (results do not depend on them)
   }
   sum_wall_forces();
@@ -1279,7 +1298,8 @@ Energies Simulation::energies() const {
       }
     };
     std::size_t at = 0;  // where the list starts in the sequence
-    for (std::size_t k = std::max(b, at); k < std::min(end, at + n_lp); ++k) lin(lp.touching[k - at], lp.law[k - at], lp.state[k - at].h);
+    for (std::size_t k = std::max(b, at); k < std::min(end, at + n_lp); ++k)
+      lin(lp.touching[k - at], lp.law[k - at], lp.state[k - at].h);
     at += n_lp;
     for (std::size_t k = std::max(b, at); k < std::min(end, at + n_lw); ++k) {
       const LinearSlot& s = linear_walls_[k - at];

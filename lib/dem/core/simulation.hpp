@@ -172,9 +172,11 @@ class Simulation {
   void rebuild();
   // The rebuild made by every thread of a job (a team of threads_used() threads, or of one); returns after
   // a barrier. The candidates and wall candidates are collected by element ranges, one per thread, and
-  // joined in range order: the one-thread lists, element for element. The merges, the contact index and the
-  // shares are independent tasks, run at once on different threads.
-  void rebuild_on(const Team& team);
+  // joined in range order: the one-thread lists, element for element. The pair lists are merged by element
+  // ranges (merge_on); the contact index and the shares are independent tasks, run at once on different
+  // threads. false: too many slots for the contact index (on several threads the caller throws after the job:
+  // an exception inside it would leave the other threads at a barrier).
+  bool rebuild_on(const Team& team);
   // The element–wall candidates of elements [b, end), in (i, wall) order.
   void wall_candidates(std::uint32_t b, std::uint32_t end, std::vector<LinearSlot>& lin,
                        std::vector<FaceSlot>& face) const;
