@@ -517,8 +517,12 @@ bool Simulation::rebuild_on(const Team& team) {
   } else {  // the same lists, merged by element ranges
     merge_on(team, PairColumns{linear_pairs_}, candidates_, fresh_pair(LawKind::linear), rebuild_first_, linear_plan_,
              rebuild_parts_[k].linear_aside);
-    merge_on(team, SlotVector<FaceSlot>{face_pairs_}, candidates_, fresh_pair(LawKind::face), rebuild_first_,
-             face_plan_, rebuild_parts_[k].face_aside);
+    const bool faces = !face_pairs_.empty() || std::any_of(m_.laws.begin(), m_.laws.end(), [](const PairLaw& l) {
+      return l.kind == LawKind::face;
+    });
+    if (faces)  // (without a face law the list stays empty: no places to count)
+      merge_on(team, SlotVector<FaceSlot>{face_pairs_}, candidates_, fresh_pair(LawKind::face), rebuild_first_,
+               face_plan_, rebuild_parts_[k].face_aside);
   }
   if (t == other) {  // the wall slots (few) and the walls' references of the next rebuild test
     auto copy = [](const auto& fresh, auto& s) {
