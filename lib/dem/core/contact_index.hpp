@@ -28,7 +28,7 @@ struct ContactIndex {
   std::vector<std::uint32_t> linear_start, linear_items;
   // others: entry = slot << 3 | kind << 1 | side
   std::vector<std::uint32_t> other_start, other_items;
-  std::vector<std::uint32_t> cursor;  // scratch
+  std::vector<std::uint32_t> cursor, other_cursor;  // scratch
 
   static std::uint32_t linear_slot(std::uint32_t entry) { return entry >> 1; }
   static std::uint32_t other_slot(std::uint32_t entry) { return entry >> 3; }
@@ -39,10 +39,20 @@ struct ContactIndex {
   template <class LinearPairs, class FaceSlots, class LinearWalls>
   void build(std::size_t elements, const LinearPairs& linear_pairs, const FaceSlots& face_pairs,
              const LinearWalls& linear_walls, const FaceSlots& face_walls) {
-    if (linear_pairs.size() >= (std::size_t{1} << 31) ||
-        face_pairs.size() + linear_walls.size() + face_walls.size() >= (std::size_t{1} << 29))
-      throw std::length_error("contact index: too many contact slots");
-    // Linear pairs.
+    check(linear_pairs.size(), face_pairs.size() + linear_walls.size() + face_walls.size());
+    build_linear(elements, linear_pairs);
+    build_other(elements, face_pairs, linear_walls, face_walls);
+  }
+  /// The sizes the entries can hold (before build_linear and build_other, which two threads may run at once).
+  static bool fits(std::size_t linear_pairs, std::size_t others) {
+    return linear_pairs < (std::size_t{1} << 31) && others < (std::size_t{1} << 29);
+  }
+  static void check(std::size_t linear_pairs, std::size_t others) {
+    if (!fits(linear_pairs, others)) throw std::length_error("contact index: too many contact slots");
+  }
+  /// The row of the linear pairs.
+  template <class LinearPairs>
+  void build_linear(std::size_t elements, const LinearPairs& linear_pairs) {
     linear_start.assign(elements + 1, 0);
     for (const auto& s : linear_pairs) ++linear_start[s.i + 1], ++linear_start[s.j + 1];
     for (std::size_t k = 0; k < elements; ++k) linear_start[k + 1] += linear_start[k];
@@ -52,7 +62,12 @@ struct ContactIndex {
       linear_items[cursor[linear_pairs[k].i]++] = k << 1;
       linear_items[cursor[linear_pairs[k].j]++] = (k << 1) | 1u;
     }
-    // The rest, in the order face pairs, linear walls, face walls.
+  }
+  /// The row of the rest, in the order face pairs, linear walls, face walls.
+  template <class FaceSlots, class LinearWalls>
+  void build_other(std::size_t elements, const FaceSlots& face_pairs, const LinearWalls& linear_walls,
+                   const FaceSlots& face_walls) {
+    std::vector<std::uint32_t>& cursor = other_cursor;
     other_start.assign(elements + 1, 0);
     for (const auto& s : face_pairs) ++other_start[s.i + 1], ++other_start[s.j + 1];
     for (const auto& s : linear_walls) ++other_start[s.i + 1];

@@ -8,6 +8,10 @@ namespace dem {
 
 void NeighbourSearch::build(const Elements& e, double skin, std::vector<CandidatePair>& out) {
   out.clear();
+  if (sort_into_cells(e, skin)) collect(e, skin, 0, static_cast<std::uint32_t>(e.size()), out);
+}
+
+bool NeighbourSearch::sort_into_cells(const Elements& e, double skin) {
   const std::size_t n = e.size();
   double xmin = std::numeric_limits<double>::max(), ymin = xmin;
   double xmax = std::numeric_limits<double>::lowest(), ymax = xmax, rmax = 0.0;
@@ -21,13 +25,13 @@ void NeighbourSearch::build(const Elements& e, double skin, std::vector<Candidat
     ymax = std::max(ymax, e.y[i]);
     rmax = std::max(rmax, e.radius[i]);
   }
-  if (n_active < 2) return;
+  if (n_active < 2) return false;
   double cell = 2.0 * rmax + skin;
   // Keep the grid at most ~4 cells per element (a sparse cloud would otherwise need a huge grid).
   const double w = xmax - xmin, h = ymax - ymin;
   while ((std::floor(w / cell) + 1.0) * (std::floor(h / cell) + 1.0) > 4.0 * n_active + 16.0) cell *= 2.0;
-  const auto nx = static_cast<std::uint32_t>(std::floor(w / cell)) + 1;
-  const auto ny = static_cast<std::uint32_t>(std::floor(h / cell)) + 1;
+  const auto nx = nx_ = static_cast<std::uint32_t>(std::floor(w / cell)) + 1;
+  const auto ny = ny_ = static_cast<std::uint32_t>(std::floor(h / cell)) + 1;
   const double inv = 1.0 / cell;
 
   // Counting sort of the elements into cells.
@@ -45,9 +49,14 @@ void NeighbourSearch::build(const Elements& e, double skin, std::vector<Candidat
   scratch_.assign(cell_start_.begin(), cell_start_.end() - 1);
   for (std::size_t i = 0; i < n; ++i)
     if (e.active[i]) cell_items_[scratch_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
+  return true;
+}
 
+void NeighbourSearch::collect(const Elements& e, double skin, std::uint32_t b, std::uint32_t end,
+                              std::vector<CandidatePair>& out) const {
+  const std::uint32_t nx = nx_, ny = ny_;
   // For each i (in index order) collect j > i in the 3×3 block of cells, then sort them.
-  for (std::uint32_t i = 0; i < n; ++i) {
+  for (std::uint32_t i = b; i < end; ++i) {
     if (!e.active[i]) continue;
     const std::uint32_t ci = cell_of_[i];
     const std::uint32_t cx = ci % nx, cy = ci / nx;

@@ -31,6 +31,9 @@ struct SlotVector {
   bool must_keep_at(std::size_t k) const { return must_keep(v[k]); }
   void move(std::size_t to, std::size_t from) { v[to] = v[from]; }
   void put(std::size_t to, const Slot& f) { v[to] = f; }
+  using Full = Slot;  // a whole slot, held aside by merge_on
+  Full load(std::size_t k) const { return v[k]; }
+  void store(std::size_t k, const Full& s) { v[k] = s; }
 };
 struct PairSeed {  // a fresh linear pair slot
   std::uint32_t i = 0, j = 0;
@@ -47,6 +50,11 @@ struct PairColumns {
   bool must_keep_at(std::size_t) const { return false; }  // a linear history ends with its candidate
   void move(std::size_t to, std::size_t from) { v.move(to, from); }
   void put(std::size_t to, const PairSeed& f) { v.put_fresh(to, f.i, f.j, f.law); }
+  using Full = FullPairSlot;
+  Full load(std::size_t k) const { return {v.pair[k], v.touching[k], v.law[k], v.state[k]}; }
+  void store(std::size_t k, const Full& s) {
+    v.pair[k] = s.pair, v.touching[k] = s.touching, v.law[k] = s.law, v.state[k] = s.state;
+  }
 };
 
 /// Merges fresh candidates into the old slots (both sorted by (i, j)) in place, without a second list:
@@ -83,6 +91,97 @@ void merge(List slots, const std::vector<Fresh>& fresh, Make&& make) {
     if (o > 0 && slots.key_at(o - 1) == kc) --w, --o, slots.move(w, o);  // its old history
     else slots.put(--w, f);
   }
+}
+
+/// merge() on the threads of a team, each taking the old slots and candidates of its element range
+/// [first[t], first[t+1]) (every thread calls it with the same arguments; `aside` is the thread's own): the
+/// same list, slot for slot. Each old slot's new place and each inserted candidate's is counted per range
+/// first; then the old slots move straight to their places without a second list: all that move towards the
+/// front, each thread in ascending order over its range, then all that move towards the back, in descending
+/// order. A slot never lands on one that still has to move (the places keep the order of the slots), except a
+/// slot whose place lies in another thread's range: those few are held aside before and written after the
+/// moves, with the fresh slots.
+template <class List, class Fresh, class Make, class Team>
+void merge_on(const Team& team, List slots, const std::vector<Fresh>& fresh, Make&& make,
+              const std::vector<std::uint32_t>& first, MergePlan& plan,
+              std::vector<std::pair<std::size_t, typename List::Full>>& aside) {
+  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  const auto t = static_cast<std::size_t>(team.t), nt = static_cast<std::size_t>(team.nt);
+  const std::size_t old_size = slots.size(), n = fresh.size();
+  // This thread's old slots [ob, oe) and candidates [cb, ce): those whose i lies in its range.
+  auto old_bound = [&](std::uint32_t i) {
+    std::size_t lo = 0, hi = old_size;
+    while (lo < hi) {
+      const std::size_t mid = lo + (hi - lo) / 2;
+      if (slots.key_at(mid) < key(i, 0)) lo = mid + 1; else hi = mid;
+    }
+    return lo;
+  };
+  auto fresh_bound = [&](std::uint32_t i) {
+    return static_cast<std::size_t>(std::lower_bound(fresh.begin(), fresh.end(), key(i, 0),
+                                                     [](const Fresh& f, std::uint64_t k) { return key(f.i, f.j) < k; }) -
+                                    fresh.begin());
+  };
+  const std::size_t ob = t == 0 ? 0 : old_bound(first[t]), oe = t + 1 == nt ? old_size : old_bound(first[t + 1]);
+  const std::size_t cb = t == 0 ? 0 : fresh_bound(first[t]), ce = t + 1 == nt ? n : fresh_bound(first[t + 1]);
+  if (t == 0) {
+    plan.dest.resize(old_size);
+    plan.place.resize(n);
+    plan.at.resize(nt + 1);
+  }
+  team.sync();
+  // Places relative to the range's start, as merge() makes them.
+  typename List::Item f;
+  std::uint32_t count = 0;
+  std::size_t c = cb;
+  for (std::size_t o = ob; o < oe; ++o) {
+    const std::uint64_t ko = slots.key_at(o);
+    for (; c < ce && key(fresh[c].i, fresh[c].j) < ko; ++c) plan.place[c] = make(fresh[c], f) ? count++ : none;
+    bool candidate = false;
+    if (c < ce && key(fresh[c].i, fresh[c].j) == ko) plan.place[c] = none, candidate = make(fresh[c++], f);
+    plan.dest[o] = candidate || slots.must_keep_at(o) ? count++ : none;
+  }
+  for (; c < ce; ++c) plan.place[c] = make(fresh[c], f) ? count++ : none;
+  plan.at[t + 1] = count;
+  team.sync();
+  if (t == 0) {
+    plan.at[0] = 0;
+    for (std::size_t q = 0; q < nt; ++q) plan.at[q + 1] += plan.at[q];
+    const std::size_t total = plan.at[nt];
+    if (total > slots.capacity()) slots.reserve(total + total / 8);
+    if (total > old_size) slots.resize(total);
+  }
+  team.sync();
+  const std::size_t at = plan.at[t];
+  const bool last = t + 1 == nt;
+  aside.clear();
+  for (std::size_t o = ob; o < oe; ++o) {  // the slots that land in another range
+    if (plan.dest[o] == none) continue;
+    const std::size_t d = at + plan.dest[o];
+    if (d < ob || (!last && d >= oe)) aside.emplace_back(d, slots.load(o));
+  }
+  team.sync();
+  for (std::size_t o = ob; o < oe; ++o) {  // towards the front, ascending
+    if (plan.dest[o] == none) continue;
+    const std::size_t d = at + plan.dest[o];
+    if (d < o && d >= ob) slots.move(d, o);
+  }
+  team.sync();
+  for (std::size_t o = oe; o-- > ob;) {  // towards the back, descending
+    if (plan.dest[o] == none) continue;
+    const std::size_t d = at + plan.dest[o];
+    if (d > o && (last || d < oe)) slots.move(d, o);
+  }
+  team.sync();
+  for (const auto& [d, full] : aside) slots.store(d, full);
+  for (std::size_t k = cb; k < ce; ++k) {
+    if (plan.place[k] == none) continue;
+    make(fresh[k], f);
+    slots.put(at + plan.place[k], f);
+  }
+  team.sync();
+  if (t == 0 && plan.at[nt] < old_size) slots.resize(plan.at[nt]);
+  team.sync();
 }
 
 /// Ends a contact: the slot stays (it is a candidate pair) but forgets its history.
@@ -305,28 +404,24 @@ double Simulation::rebuild_limit2() const {
 }
 
 void Simulation::rebuild() {
-  if (m_.numerics.reorder_every > 0 && rebuilds_ % m_.numerics.reorder_every == 0) reorder_elements();
-  ++rebuilds_;
-  const Elements& e = m_.elements;
-  search_.build(e, skin_, candidates_);
-  // A fresh slot for every candidate of the law's kind (routed by the pair's law).
-  auto fresh_pair = [&](LawKind kind) {
-    return [this, &e, kind](const CandidatePair& p, auto& s) {
-      const std::int32_t law = m_.law_index(e.material[p.i], e.material[p.j]);
-      if (law < 0 || m_.laws[static_cast<std::size_t>(law)].kind != kind) return false;
-      s = {};
-      s.i = p.i, s.j = p.j, s.law = law;
-      return true;
-    };
+  const int nt = threads_used();
+  if (nt == 1) {
+    rebuild_on(Team{});
+    return;
+  }
+  WorkerThreads& pool = workers(nt);
+  bool done = true;
+  auto body = [&](int t) {
+    if (!rebuild_on(Team{&pool, t, nt}) && t == 0) done = false;
   };
-  merge(PairColumns{linear_pairs_}, candidates_, fresh_pair(LawKind::linear));
-  merge(SlotVector<FaceSlot>{face_pairs_}, candidates_, fresh_pair(LawKind::face));
-  // Element–wall candidates (few: the elements near a wall).
-  std::vector<LinearSlot>& lin = linear_fresh_;
-  std::vector<FaceSlot>& face = face_fresh_;
-  lin.clear();
-  face.clear();
-  for (std::uint32_t i = 0; i < e.size(); ++i) {
+  pool.run(body);
+  if (!done) ContactIndex::check(linear_pairs_.size(), face_pairs_.size() + linear_walls_.size() + face_walls_.size());
+}
+
+void Simulation::wall_candidates(std::uint32_t b, std::uint32_t end, std::vector<LinearSlot>& lin,
+                                 std::vector<FaceSlot>& face) const {
+  const Elements& e = m_.elements;
+  for (std::uint32_t i = b; i < end; ++i) {
     if (!e.active[i]) continue;
     const Vec2 c{e.x[i], e.y[i]};
     for (std::uint32_t k = 0; k < m_.walls.size(); ++k) {
@@ -348,17 +443,117 @@ void Simulation::rebuild() {
       }
     }
   }
-  auto copy = [](const auto& fresh, auto& s) {
-    s = fresh;
-    return true;
+}
+
+bool Simulation::rebuild_on(const Team& team) {
+  const int t = team.t, nt = team.nt;
+  const auto k = static_cast<std::size_t>(t);
+  const Elements& e = m_.elements;
+  if (t == 0) {
+    if (m_.numerics.reorder_every > 0 && rebuilds_ % m_.numerics.reorder_every == 0) reorder_elements();
+    ++rebuilds_;
+    rebuild_cells_ = search_.sort_into_cells(e, skin_);
+    // Each thread collects the candidates of an equal count of elements (the search costs about the same for
+    // every element). Which thread collects what changes no result.
+    const std::size_t n = e.size(), nn = static_cast<std::size_t>(nt);
+    rebuild_first_.resize(nn + 1);
+    for (std::size_t q = 0; q <= nn; ++q) rebuild_first_[q] = static_cast<std::uint32_t>(n * q / nn);
+    if (rebuild_parts_.size() < nn) rebuild_parts_.resize(nn);
+    x_ref_.resize(n);
+    y_ref_.resize(n);
+  }
+  team.sync();
+  {  // element–element and element–wall candidates of this thread's elements, in (i, j) order
+    std::vector<CandidatePair>& pairs = t == 0 ? candidates_ : rebuild_parts_[k].pairs;
+    std::vector<LinearSlot>& lin = t == 0 ? linear_fresh_ : rebuild_parts_[k].lin;
+    std::vector<FaceSlot>& face = t == 0 ? face_fresh_ : rebuild_parts_[k].face;
+    pairs.clear();
+    lin.clear();
+    face.clear();
+    if (rebuild_cells_) search_.collect(e, skin_, rebuild_first_[k], rebuild_first_[k + 1], pairs);
+    wall_candidates(rebuild_first_[k], rebuild_first_[k + 1], lin, face);
+    // the positions of this rebuild, for the next rebuild test
+    const auto b = static_cast<std::ptrdiff_t>(rebuild_first_[k]);
+    const auto end = static_cast<std::ptrdiff_t>(rebuild_first_[k + 1]);
+    std::copy(e.x.begin() + b, e.x.begin() + end, x_ref_.begin() + b);
+    std::copy(e.y.begin() + b, e.y.begin() + end, y_ref_.begin() + b);
+  }
+  team.sync();
+  if (nt > 1) {  // join the parts in range order
+    if (t == 0) {
+      std::size_t np = candidates_.size(), nl = linear_fresh_.size(), nf = face_fresh_.size();
+      for (std::size_t q = 1; q < static_cast<std::size_t>(nt); ++q) {
+        RebuildPart& p = rebuild_parts_[q];
+        p.at_pairs = np, p.at_lin = nl, p.at_face = nf;
+        np += p.pairs.size(), nl += p.lin.size(), nf += p.face.size();
+      }
+      candidates_.resize(np);
+      linear_fresh_.resize(nl);
+      face_fresh_.resize(nf);
+    }
+    team.sync();
+    if (t > 0) {
+      const RebuildPart& p = rebuild_parts_[k];
+      std::copy(p.pairs.begin(), p.pairs.end(), candidates_.begin() + static_cast<std::ptrdiff_t>(p.at_pairs));
+      std::copy(p.lin.begin(), p.lin.end(), linear_fresh_.begin() + static_cast<std::ptrdiff_t>(p.at_lin));
+      std::copy(p.face.begin(), p.face.end(), face_fresh_.begin() + static_cast<std::ptrdiff_t>(p.at_face));
+    }
+    team.sync();
+  }
+  // A fresh slot for every candidate of the law's kind (routed by the pair's law).
+  auto fresh_pair = [this, &e](LawKind kind) {
+    return [this, &e, kind](const CandidatePair& p, auto& s) {
+      const std::int32_t law = m_.law_index(e.material[p.i], e.material[p.j]);
+      if (law < 0 || m_.laws[static_cast<std::size_t>(law)].kind != kind) return false;
+      s = {};
+      s.i = p.i, s.j = p.j, s.law = law;
+      return true;
+    };
   };
-  merge(SlotVector<LinearSlot>{linear_walls_}, lin, copy);
-  merge(SlotVector<FaceSlot>{face_walls_}, face, copy);
-  x_ref_ = e.x;
-  y_ref_ = e.y;
-  wall_ref_.resize(m_.walls.size());
-  for (std::size_t k = 0; k < m_.walls.size(); ++k) wall_ref_[k] = m_.walls[k].a;
-  index_contacts();
+  const int other = nt > 1 ? 1 : 0;
+  if (nt == 1) {
+    merge(PairColumns{linear_pairs_}, candidates_, fresh_pair(LawKind::linear));
+    merge(SlotVector<FaceSlot>{face_pairs_}, candidates_, fresh_pair(LawKind::face));
+  } else {  // the same lists, merged by element ranges
+    merge_on(team, PairColumns{linear_pairs_}, candidates_, fresh_pair(LawKind::linear), rebuild_first_, linear_plan_,
+             rebuild_parts_[k].linear_aside);
+    const bool faces = !face_pairs_.empty() || std::any_of(m_.laws.begin(), m_.laws.end(), [](const PairLaw& l) {
+      return l.kind == LawKind::face;
+    });
+    if (faces)  // (without a face law the list stays empty: no places to count)
+      merge_on(team, SlotVector<FaceSlot>{face_pairs_}, candidates_, fresh_pair(LawKind::face), rebuild_first_,
+               face_plan_, rebuild_parts_[k].face_aside);
+  }
+  if (t == other) {  // the wall slots (few) and the walls' references of the next rebuild test
+    auto copy = [](const auto& fresh, auto& s) {
+      s = fresh;
+      return true;
+    };
+    merge(SlotVector<LinearSlot>{linear_walls_}, linear_fresh_, copy);
+    merge(SlotVector<FaceSlot>{face_walls_}, face_fresh_, copy);
+    wall_ref_.resize(m_.walls.size());
+    for (std::size_t w = 0; w < m_.walls.size(); ++w) wall_ref_[w] = m_.walls[w].a;
+  }
+  team.sync();
+  // The contact index (as index_contacts()): its linear row on thread 0; the rest of it, and the shares,
+  // on thread 1 (or 0).
+  // Too many slots for the index: every thread sees the same sizes and leaves; the caller throws after the job
+  // (an exception inside a job would leave the other threads at a barrier).
+  const std::size_t others = face_pairs_.size() + linear_walls_.size() + face_walls_.size();
+  if (!ContactIndex::fits(linear_pairs_.size(), others)) {
+    if (nt == 1) ContactIndex::check(linear_pairs_.size(), others);
+    return false;
+  }
+  if (t == 0) index_.build_linear(e.size(), linear_pairs_.pair);
+  if (t == other) {
+    index_.build_other(e.size(), face_pairs_, linear_walls_, face_walls_);
+    face_push_.resize(face_pairs_.size());
+    face_wall_push_.resize(face_walls_.size());
+    shares_.threads = 0;
+    if (threads_used() > 1) share_work(threads_used());
+  }
+  team.sync();
+  return true;
 }
 
 void Simulation::index_contacts() {
@@ -369,7 +564,7 @@ void Simulation::index_contacts() {
   if (threads_used() > 1) share_work(threads_used());
 }
 
-WorkerThreads& Simulation::workers(int threads) {
+WorkerThreads& Simulation::workers(int threads) const {
   if (!workers_.pool || workers_.pool->size() != threads) workers_.pool = std::make_unique<WorkerThreads>(threads);
   return *workers_.pool;
 }
@@ -984,6 +1179,7 @@ void Simulation::step() {
     if (step_ > 0 && !tested && !test) rebuild();
     displaced_.assign(static_cast<std::size_t>(nt), 0);
     oversteps_.assign(static_cast<std::size_t>(nt), Overstep{});
+    bool index_failed = false;
     auto body = [&](int t) {  // thread t takes share t
       const std::size_t k = static_cast<std::size_t>(t);
       if (test) {  // needs_rebuild() split over the threads (an OR of the same per-element tests)
@@ -994,24 +1190,39 @@ void Simulation::step() {
         pool.barrier();
         std::uint8_t any = 0;
         for (std::uint8_t d : displaced_) any |= d;
-        if (any) {
-          if (t == 0) rebuild();  // new slot lists and shares, for every thread after the barrier
-          pool.barrier();
+        if (any && !rebuild_on(Team{&pool, t, nt})) {  // new slot lists and shares, for every thread after it
+          if (t == 0) index_failed = true;  // too many slots: thrown after the job
+          return;
         }
       }
       const double c0 = thread_seconds();  // the thread's work on its share, without the barrier's wait
       sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
+      // (K17–K19) and the next step's rebuild test: the elements [mid, end) before the barrier (private: their
+      // forces are complete, and no other thread reads them), the rest after the shared ones are summed. So
+      // the barrier waits only for unequal sweeps plus integrations, not for each phase on its own.
+      const std::size_t b = shares_.first[k], end = shares_.first[k + 1];
+      const std::size_t mid = plate ? end : std::max<std::size_t>(b, shares_.private_from[k]);
+      Overstep late;
+      std::uint8_t displaced_late = 0;
+      if (mid < end)
+        late = integrate_range(mid, end, dt_v, freedom(mid, end), limit2_step, limit2_next, displaced_late);
       const double c1 = thread_seconds();
       pool.barrier();
       const double c2 = thread_seconds();
       gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
-      if (!plate) {  // (K17–K19), and the next step's rebuild test
-        oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, freedom(shares_.first[k], shares_.first[k + 1]), limit2_step,
-                                        limit2_next, displaced_[k]);
+      if (!plate) {
+        Overstep first;  // over the shares in element order (overstep())
+        displaced_[k] = 0;
+        if (b < mid) first = integrate_range(b, mid, dt_v, freedom(b, mid), limit2_step, limit2_next, displaced_[k]);
+        take_worse(first, late);
+        oversteps_[k] = first;
+        displaced_[k] |= displaced_late;
       }
       busy_[k].seconds += (c1 - c0) + (thread_seconds() - c2);
     };
     pool.run(body);
+    if (index_failed)
+      ContactIndex::check(linear_pairs_.size(), face_pairs_.size() + linear_walls_.size() + face_walls_.size());
     balance_if_uneven();  // the next step's shares (results do not depend on them)
   }
   sum_wall_forces();
@@ -1053,35 +1264,86 @@ void Simulation::advance_base_plate() {
 }
 
 Energies Simulation::energies() const {
+  // Summed in chunks of kEnergyChunk elements, and of kEnergyChunk slots of the slot lists taken one after
+  // another (linear pairs, linear walls, face pairs, face walls): each chunk in order from zero, the chunk
+  // sums in chunk order. The chunks do not depend on the threads, so neither does any bit of the sums; with
+  // one chunk (up to kEnergyChunk elements and slots) the sums are those of a single pass in order.
   const Elements& e = m_.elements;
-  Energies en;
-  for (std::size_t i = 0; i < e.size(); ++i) {
-    if (!e.active[i]) continue;
-    en.kinetic += 0.5 * e.mass[i] * (e.vx[i] * e.vx[i] + e.vy[i] * e.vy[i]) +
-                  0.5 * e.inertia[i] * e.omega[i] * e.omega[i];
-    en.potential -= e.mass[i] * (m_.gravity.x * e.x[i] + m_.gravity.y * e.y[i]);
-  }
-  auto lin = [&](std::uint8_t touching, std::int32_t law, const LinearContactHistory& h) {
-    if (!touching) return;
-    const LinearSpringDashpot& l = m_.laws[static_cast<std::size_t>(law)].linear;
-    if (l.kn > 0.0) en.elastic += 0.5 * h.en * h.en / l.kn;
-    if (l.ks > 0.0) en.elastic += 0.5 * h.es * h.es / l.ks;
-  };
-  auto face = [&](const FaceSlot& s) {
-    if (!s.touching) return;
-    const int n = m_.laws[static_cast<std::size_t>(s.law)].face.segments;
-    for (int k = 0; k < n; ++k) {
-      const SegmentState& g = s.h.seg[static_cast<std::size_t>(k)];
-      if (!g.linked) continue;
-      if (s.c.kn > 0.0) en.elastic += 0.5 * g.pe * g.pe / s.c.kn;
-      if (s.c.ks > 0.0) en.elastic += 0.5 * g.qe * g.qe / s.c.ks;
+  const LinearPairSlots& lp = linear_pairs_;
+  const std::size_t n = e.size();
+  const std::size_t n_lp = lp.size(), n_lw = linear_walls_.size(), n_fp = face_pairs_.size(), n_fw = face_walls_.size();
+  const std::size_t slots = n_lp + n_lw + n_fp + n_fw;
+  const std::size_t element_chunks = (n + kEnergyChunk - 1) / kEnergyChunk;
+  const std::size_t chunks = element_chunks + (slots + kEnergyChunk - 1) / kEnergyChunk;
+  energy_chunks_.resize(chunks);
+  auto sum_elements = [&](std::size_t b, std::size_t end, Energies& en) {
+    for (std::size_t i = b; i < end; ++i) {
+      if (!e.active[i]) continue;
+      en.kinetic += 0.5 * e.mass[i] * (e.vx[i] * e.vx[i] + e.vy[i] * e.vy[i]) +
+                    0.5 * e.inertia[i] * e.omega[i] * e.omega[i];
+      en.potential -= e.mass[i] * (m_.gravity.x * e.x[i] + m_.gravity.y * e.y[i]);
     }
   };
-  const LinearPairSlots& lp = linear_pairs_;
-  for (std::size_t k = 0; k < lp.size(); ++k) lin(lp.touching[k], lp.law[k], lp.state[k].h);
-  for (const auto& s : linear_walls_) lin(s.touching, s.law, s.h);
-  for (const auto& s : face_pairs_) face(s);
-  for (const auto& s : face_walls_) face(s);
+  auto sum_slots = [&](std::size_t b, std::size_t end, Energies& en) {  // slots [b, end) of the lists in turn
+    auto lin = [&](std::uint8_t touching, std::int32_t law, const LinearContactHistory& h) {
+      if (!touching) return;
+      const LinearSpringDashpot& l = m_.laws[static_cast<std::size_t>(law)].linear;
+      if (l.kn > 0.0) en.elastic += 0.5 * h.en * h.en / l.kn;
+      if (l.ks > 0.0) en.elastic += 0.5 * h.es * h.es / l.ks;
+    };
+    auto face = [&](const FaceSlot& s) {
+      if (!s.touching) return;
+      const int segments = m_.laws[static_cast<std::size_t>(s.law)].face.segments;
+      for (int k = 0; k < segments; ++k) {
+        const SegmentState& g = s.h.seg[static_cast<std::size_t>(k)];
+        if (!g.linked) continue;
+        if (s.c.kn > 0.0) en.elastic += 0.5 * g.pe * g.pe / s.c.kn;
+        if (s.c.ks > 0.0) en.elastic += 0.5 * g.qe * g.qe / s.c.ks;
+      }
+    };
+    std::size_t at = 0;  // where the list starts in the sequence
+    for (std::size_t k = std::max(b, at); k < std::min(end, at + n_lp); ++k)
+      lin(lp.touching[k - at], lp.law[k - at], lp.state[k - at].h);
+    at += n_lp;
+    for (std::size_t k = std::max(b, at); k < std::min(end, at + n_lw); ++k) {
+      const LinearSlot& s = linear_walls_[k - at];
+      lin(s.touching, s.law, s.h);
+    }
+    at += n_lw;
+    for (std::size_t k = std::max(b, at); k < std::min(end, at + n_fp); ++k) face(face_pairs_[k - at]);
+    at += n_fp;
+    for (std::size_t k = std::max(b, at); k < std::min(end, at + n_fw); ++k) face(face_walls_[k - at]);
+  };
+  auto sum_chunks = [&](std::size_t c0, std::size_t c1) {
+    for (std::size_t c = c0; c < c1; ++c) {
+      Energies en;  // a local: the sums stay in registers
+      if (c < element_chunks) {
+        sum_elements(c * kEnergyChunk, std::min(n, (c + 1) * kEnergyChunk), en);
+      } else {
+        const std::size_t b = (c - element_chunks) * kEnergyChunk;
+        sum_slots(b, std::min(slots, b + kEnergyChunk), en);
+      }
+      energy_chunks_[c] = en;
+    }
+  };
+  const int nt = threads_used();
+  if (nt == 1 || chunks < 2) {
+    sum_chunks(0, chunks);
+  } else {
+    auto body = [&](int t) {  // a share of the element chunks and one of the slot chunks (they cost differently)
+      const auto q = static_cast<std::size_t>(t), m = static_cast<std::size_t>(nt);
+      const std::size_t ec = element_chunks, sc = chunks - element_chunks;
+      sum_chunks(ec * q / m, ec * (q + 1) / m);
+      sum_chunks(ec + sc * q / m, ec + sc * (q + 1) / m);
+    };
+    workers(nt).run(body);
+  }
+  Energies en;
+  for (std::size_t c = 0; c < element_chunks; ++c) {
+    en.kinetic += energy_chunks_[c].kinetic;
+    en.potential += energy_chunks_[c].potential;
+  }
+  for (std::size_t c = element_chunks; c < chunks; ++c) en.elastic += energy_chunks_[c].elastic;
   return en;
 }
 

@@ -51,6 +51,19 @@ Dashpots linear_dashpots(const PairLaw& law, double mass_i, double mass_j);
 /// M7.3, M7.4, M19).
 FaceConstants face_constants(const PairLaw& law, double r_i, double r_j, double m_eff, double thickness);
 
+/// The bookkeeping of a slot list merged at a rebuild on several threads (simulation.cpp, merge_on).
+struct MergePlan {
+  std::vector<std::uint32_t> dest, place;  // per old slot, per candidate: its place within its range, or none
+  std::vector<std::size_t> at;             // where each thread's range starts in the merged list
+};
+/// A whole linear pair slot (the columns of LinearPairSlots at one index).
+struct FullPairSlot {
+  SlotPair pair;
+  std::uint8_t touching = 0;
+  std::int32_t law = -1;
+  LinearContactState state;
+};
+
 class Simulation {
  public:
   explicit Simulation(Model model);
@@ -67,7 +80,9 @@ class Simulation {
   std::int64_t steps() const { return step_; }
   double dt() const { return m_.numerics.dt; }
 
+  /// Summed in fixed chunks (energies() in simulation.cpp): the same bits on any number of threads.
   Energies energies() const;
+  static constexpr std::size_t kEnergyChunk = 4096;
   std::vector<ContactView> contacts() const;
   std::size_t contact_count() const;  // touching pairs and wall contacts
   /// Sum of |f_n n + f_s t| over the contacts that carry force, and their number (no allocation).
@@ -143,7 +158,28 @@ class Simulation {
 
  private:
   friend struct SimulationAccess;  // checkpoints (run/checkpoint.cpp) save and restore the whole state
+  // The threads that make a rebuild together: thread t of nt, all inside one job of pool (nullptr: one
+  // thread). sync() is the pool's barrier.
+  struct Team {
+    WorkerThreads* pool = nullptr;
+    int t = 0, nt = 1;
+    void sync() const {
+      if (pool) pool->barrier();
+    }
+  };
+  // New candidates, slot lists, contact index and shares, on threads_used() threads (a job of its own).
+  // The result is the same bit for bit for any number of threads.
   void rebuild();
+  // The rebuild made by every thread of a job (a team of threads_used() threads, or of one); returns after
+  // a barrier. The candidates and wall candidates are collected by element ranges, one per thread, and
+  // joined in range order: the one-thread lists, element for element. The pair lists are merged by element
+  // ranges (merge_on); the contact index and the shares are independent tasks, run at once on different
+  // threads. false: too many slots for the contact index (on several threads the caller throws after the job:
+  // an exception inside it would leave the other threads at a barrier).
+  bool rebuild_on(const Team& team);
+  // The element–wall candidates of elements [b, end), in (i, wall) order.
+  void wall_candidates(std::uint32_t b, std::uint32_t end, std::vector<LinearSlot>& lin,
+                       std::vector<FaceSlot>& face) const;
   void apply_preloads();
   bool needs_rebuild() const;
   double rebuild_limit2() const;  // the squared displacement that calls for a rebuild; < 0: rebuild now
@@ -195,6 +231,19 @@ class Simulation {
   std::vector<FaceSlot> face_pairs_, face_walls_;
   std::vector<LinearSlot> linear_fresh_;  // rebuild scratch (wall candidates), kept to reuse its capacity
   std::vector<FaceSlot> face_fresh_;
+  struct RebuildPart {  // rebuild scratch of thread t > 0 (thread 0 writes into the lists above directly)
+    std::vector<CandidatePair> pairs;
+    std::vector<LinearSlot> lin;
+    std::vector<FaceSlot> face;
+    std::size_t at_pairs = 0, at_lin = 0, at_face = 0;  // where the part goes in the joined lists
+    std::vector<std::pair<std::size_t, FullPairSlot>> linear_aside;  // merge_on's slots held aside
+    std::vector<std::pair<std::size_t, FaceSlot>> face_aside;
+  };
+  MergePlan linear_plan_, face_plan_;
+  std::vector<RebuildPart> rebuild_parts_;
+  mutable std::vector<Energies> energy_chunks_;  // energies(): the sums of its chunks
+  std::vector<std::uint32_t> rebuild_first_;  // the element ranges of a rebuild's threads
+  bool rebuild_cells_ = false;                // the neighbour search has cells (two or more active elements)
   ContactIndex index_;                        // each element's slots in the fixed summation order
   ThreadShares shares_;                       // which thread computes what (built for threads_used())
   // The threads of a step, started at the first step on several threads; a copy of the simulation
@@ -206,8 +255,8 @@ class Simulation {
     Workers& operator=(const Workers&) { return *this; }
     Workers(Workers&&) noexcept = default;
     Workers& operator=(Workers&&) noexcept = default;
-  } workers_;
-  WorkerThreads& workers(int threads);
+  } mutable workers_;
+  WorkerThreads& workers(int threads) const;  // the pool (started on first use; energies() uses it too)
   std::vector<std::uint8_t> displaced_;  // per thread: an element of its share moved far enough to rebuild
   std::vector<Overstep> oversteps_;      // per thread: the blow-up test over its share (overstep())
   struct alignas(64) ThreadClock {       // per thread: CPU seconds on its share since the shares were made

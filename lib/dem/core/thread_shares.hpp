@@ -27,6 +27,9 @@ struct ThreadShares {
                                                    // walls, face walls): threads + 1 boundaries
   std::vector<std::uint8_t> shared;                // per element: 1 if summed after the barrier
   std::vector<std::uint32_t> shared_start, shared_items;  // per thread, its shared elements (ascending)
+  // per thread: its elements from here to the end of its range are all private (one past its last shared
+  // element; the first of its range if it has none): integrated before the step's barrier
+  std::vector<std::uint32_t> private_from;
   std::vector<std::uint64_t> work;                 // per element: the work estimate of the last build
   // Measured cost per unit of work estimate of each thread's range [rate_first[t], rate_first[t+1])
   // (balance()); empty: none. The next builds weight each element's estimate by the rate of the range it
@@ -138,10 +141,12 @@ struct ThreadShares {
     mark(face_pairs, slots[1]);
     shared_start.assign(n + 1, 0);
     shared_items.clear();
+    private_from.assign(n, 0);
     for (std::size_t t = 0; t < n; ++t) {
       for (std::uint32_t k = first[t]; k < first[t + 1]; ++k)
         if (shared[k]) shared_items.push_back(k);
       shared_start[t + 1] = static_cast<std::uint32_t>(shared_items.size());
+      private_from[t] = shared_start[t + 1] > shared_start[t] ? shared_items.back() + 1 : first[t];
     }
   }
   // The run of slots whose element i lies in each range (the list is sorted by i).
