@@ -1180,6 +1180,7 @@ void Simulation::step() {
     displaced_.assign(static_cast<std::size_t>(nt), 0);
     oversteps_.assign(static_cast<std::size_t>(nt), Overstep{});
     bool index_failed = false;
+    const bool timed = balance_steps_ % kClockEvery == 0;  // this step's work measured (balance_if_uneven)
     auto body = [&](int t) {  // thread t takes share t
       const std::size_t k = static_cast<std::size_t>(t);
       if (test) {  // needs_rebuild() split over the threads (an OR of the same per-element tests)
@@ -1195,7 +1196,7 @@ void Simulation::step() {
           return;
         }
       }
-      const double c0 = thread_seconds();  // the thread's work on its share, without the barrier's wait
+      const double c0 = timed ? thread_seconds() : 0.0;  // the thread's work on its share, without the barrier's wait
       sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
       // (K17–K19) and the next step's rebuild test: the elements [mid, end) before the barrier (private: their
       // forces are complete, and no other thread reads them), the rest after the shared ones are summed. So
@@ -1206,9 +1207,9 @@ void Simulation::step() {
       std::uint8_t displaced_late = 0;
       if (mid < end)
         late = integrate_range(mid, end, dt_v, freedom(mid, end), limit2_step, limit2_next, displaced_late);
-      const double c1 = thread_seconds();
+      const double c1 = timed ? thread_seconds() : 0.0;
       pool.barrier();
-      const double c2 = thread_seconds();
+      const double c2 = timed ? thread_seconds() : 0.0;
       gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
       if (!plate) {
         Overstep first;  // over the shares in element order (overstep())
@@ -1218,7 +1219,7 @@ void Simulation::step() {
         oversteps_[k] = first;
         displaced_[k] |= displaced_late;
       }
-      busy_[k].seconds += (c1 - c0) + (thread_seconds() - c2);
+      if (timed) busy_[k].seconds += (c1 - c0) + (thread_seconds() - c2);
     };
     pool.run(body);
     if (index_failed)

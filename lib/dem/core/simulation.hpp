@@ -138,6 +138,9 @@ class Simulation {
   /// on where the boundaries lie. balance_threads does it at once with the given seconds per thread (tests
   /// use it to force any split); balances() counts the moves.
   static constexpr int kBalanceSteps = 32;
+  /// The thread clock (CLOCK_THREAD_CPUTIME_ID) is a system call of about 1 µs on a KVM guest; it is read on
+  /// every kClockEvery-th step only (8 of the 32 steps between two balance decisions).
+  static constexpr int kClockEvery = 4;
   static constexpr double kBalanceTolerance = 0.03;
   void balance_threads(const std::vector<double>& seconds);
   std::int64_t balances() const { return balances_; }
