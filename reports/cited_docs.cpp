@@ -17,13 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_all(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 bool starts_with(const std::string& s, const std::string& p) { return s.rfind(p, 0) == 0; }
 
 /// Inline Markdown on escaped text: `code`, **bold**.
@@ -220,7 +213,7 @@ CitedDocs render_cited_docs(const fs::path& docs_dir) {
     const fs::path p = docs_dir / (name + ".md");
     if (!fs::is_regular_file(p)) continue;
     body += "<section class=\"doc\" id=\"doc-section-" + name + "\">\n<h2>" + html_escape(title) + "</h2>\n" +
-            render_md(name, read_all(p), d.anchors) + "</section>\n";
+            render_md(name, read_text_file(p), d.anchors) + "</section>\n";
   }
   if (body.empty()) return d;
   d.html = "<div id=\"cited-docs\">\n<p class=\"small\">The project's own documentation, as in the repository's "

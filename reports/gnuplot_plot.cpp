@@ -1,6 +1,8 @@
 // gnuplot scripts with inline data blocks, run through the shell.
 #include "gnuplot_plot.hpp"
 
+#include "text_format.hpp"
+
 #include <fmt/format.h>
 #include <sys/wait.h>
 
@@ -69,13 +71,6 @@ std::string shell_quote(const std::string& word) {
   std::string out = "'";
   for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return out + "'";
-}
-
-std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  if (in) buffer << in.rdbuf();
-  return buffer.str();
 }
 
 // Tics for a log axis over [lo, hi]: gnuplot's decades when the range spans 2 decades or more,
@@ -269,9 +264,9 @@ PlotOutcome render_svg(const Plot& plot, const std::filesystem::path& svg_file,
                               shell_quote(log_path.string()) + " 2>&1";
   const int status = std::system(command.c_str());
   const int exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;  // -1: killed by a signal
-  const std::string log = read_file(log_path);
+  const std::string log = read_text_file(log_path);
   std::filesystem::remove(log_path, ignored);
-  outcome.svg = read_file(svg_path);
+  outcome.svg = read_text_file(svg_path);
   if (exit_code != 0 || outcome.svg.find("<svg") == std::string::npos) {
     outcome.error = fmt::format("gnuplot failed (exit code {}){}{}", exit_code,
                                 log.empty() ? "" : ": ", log.substr(0, 500));

@@ -18,13 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_all(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 const char* about =
     "Measured by <code>bench/suite.py</code> (bench/README.md): dem2d and LAMMPS <code>gran/hooke/history</code> on the "
     "same cases, interleaved, the best of several runs of each; rates in element-steps per second of the time loop, "
@@ -69,8 +62,8 @@ std::optional<SpeedTable> find_speed_table(const fs::path& bench) {
     const fs::path plot = bench / ("cost_" + stem.substr(6) + ".svg");
     if (fs::is_regular_file(plot)) t.plot = plot;
   }
-  t.table_md = read_all(t.table);
-  if (!t.plot.empty()) t.plot_svg = read_all(t.plot);
+  t.table_md = read_text_file(t.table);
+  if (!t.plot.empty()) t.plot_svg = read_text_file(t.plot);
   return t;
 }
 

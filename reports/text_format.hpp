@@ -1,6 +1,7 @@
 // Formatting of numbers and JSON values for the report, and escaping for HTML and Markdown.
 #pragma once
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -23,5 +24,8 @@ std::string markdown_escape(std::string_view text);  // inline text and table ce
 std::string slug(std::string_view text);             // [A-Za-z0-9_-] only, for ids and file names
 
 std::string utc_now_iso8601();
+
+// A file's whole text ("" if it cannot be read).
+std::string read_text_file(const std::filesystem::path& path);
 
 }  // namespace report

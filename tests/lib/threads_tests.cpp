@@ -2,6 +2,7 @@
 // after any number of steps, and every output file, are the same bit for bit on 1, 2 and 3 threads.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -32,32 +33,42 @@ const std::vector<ThreadCase> kCases = {
     {"cases/silo/static_11_12.toml", {"numerics.duration=0.05 s", "numerics.reorder_every=1"}, 500},
 };
 
+/// Steps a case on 1, 2 and 3 threads side by side (every case on t threads, however small); every `every`
+/// steps and at the end the whole states must be the same bits, and `also(sims)` adds its checks there.
+/// Contacts must have formed (the comparison covered contact forces and histories).
+template <class Also>
+std::vector<dem::Simulation> same_on_1_2_3_threads(const ThreadCase& tc, int every, Also&& also) {
+  const dem::Case c = dem::read_case(test::source(tc.path), tc.sets);
+  std::vector<dem::Simulation> sims;
+  for (int t = 1; t <= 3; ++t) {
+    sims.emplace_back(c.model);
+    sims.back().set_threads(t, 1);
+  }
+  REQUIRE(dem::simulation_state(sims[0]) == dem::simulation_state(sims[1]));
+  REQUIRE(dem::simulation_state(sims[0]) == dem::simulation_state(sims[2]));
+  std::size_t most_contacts = 0;
+  bool same = true;
+  for (int k = 1; k <= tc.steps && same; ++k) {
+    for (auto& s : sims) s.step();
+    most_contacts = std::max(most_contacts, sims[0].contact_count());
+    if (k % every == 0 || k == tc.steps) {
+      const std::string one = dem::simulation_state(sims[0]);
+      same = one == dem::simulation_state(sims[1]) && one == dem::simulation_state(sims[2]);
+      CAPTURE(k);
+      CHECK(same);
+      also(sims);
+    }
+  }
+  CHECK(most_contacts > 0);
+  return sims;
+}
+
 }  // namespace
 
 TEST_CASE("The state after every step is the same bit for bit on 1, 2 and 3 threads", "[threads]") {
   for (const ThreadCase& tc : kCases) {
     CAPTURE(tc.path);
-    const dem::Case c = dem::read_case(test::source(tc.path), tc.sets);
-    std::vector<dem::Simulation> sims;
-    for (int t = 1; t <= 3; ++t) {
-      sims.emplace_back(c.model);
-      sims.back().set_threads(t, 1);  // every case on t threads, however small
-    }
-    REQUIRE(dem::simulation_state(sims[0]) == dem::simulation_state(sims[1]));
-    REQUIRE(dem::simulation_state(sims[0]) == dem::simulation_state(sims[2]));
-    std::size_t most_contacts = 0;
-    bool same = true;
-    for (int k = 1; k <= tc.steps && same; ++k) {
-      for (auto& s : sims) s.step();
-      most_contacts = std::max(most_contacts, sims[0].contact_count());
-      if (k % 50 == 0 || k == tc.steps) {
-        const std::string one = dem::simulation_state(sims[0]);
-        same = one == dem::simulation_state(sims[1]) && one == dem::simulation_state(sims[2]);
-        CAPTURE(k);
-        CHECK(same);
-      }
-    }
-    CHECK(most_contacts > 0);  // the comparison covered contact forces
+    same_on_1_2_3_threads(tc, 50, [](const std::vector<dem::Simulation>&) {});
   }
 }
 
@@ -290,30 +301,13 @@ TEST_CASE("Rebuilds at almost every step give the same candidates and slots bit 
   };
   for (const ThreadCase& tc : cases) {
     CAPTURE(tc.path);
-    const dem::Case c = dem::read_case(test::source(tc.path), tc.sets);
-    std::vector<dem::Simulation> sims;
-    for (int t = 1; t <= 3; ++t) {
-      sims.emplace_back(c.model);
-      sims.back().set_threads(t, 1);
-    }
-    bool same = true;
-    std::size_t most_contacts = 0;
-    for (int k = 1; k <= tc.steps && same; ++k) {
-      for (auto& s : sims) s.step();
-      most_contacts = std::max(most_contacts, sims[0].contact_count());
-      if (k % 25 == 0 || k == tc.steps) {
-        const std::string one = dem::simulation_state(sims[0]);
-        same = one == dem::simulation_state(sims[1]) && one == dem::simulation_state(sims[2]);
-        CAPTURE(k);
-        CHECK(same);
-        for (std::size_t t = 1; t < sims.size(); ++t) {  // summed in chunks that do not depend on the threads
-          const dem::Energies a = sims[0].energies(), b = sims[t].energies();
-          CHECK((a.kinetic == b.kinetic && a.potential == b.potential && a.elastic == b.elastic));
-        }
+    const auto sims = same_on_1_2_3_threads(tc, 25, [](const std::vector<dem::Simulation>& at) {
+      for (std::size_t t = 1; t < at.size(); ++t) {  // summed in chunks that do not depend on the threads
+        const dem::Energies a = at[0].energies(), b = at[t].energies();
+        CHECK((a.kinetic == b.kinetic && a.potential == b.potential && a.elastic == b.elastic));
       }
-    }
+    });
     CHECK(sims[0].rebuilds() > tc.steps / 2);  // the rebuilds were frequent
-    CHECK(most_contacts > 0);  // the slots carried contact histories
     for (auto& s : sims) CHECK(s.rebuilds() == sims[0].rebuilds());
   }
 }
