@@ -35,14 +35,6 @@ struct ContactIndex {
   static SlotKind other_kind(std::uint32_t entry) { return static_cast<SlotKind>((entry >> 1) & 3u); }
   static bool is_j(std::uint32_t entry) { return (entry & 1u) != 0; }
 
-  /// Builds both rows from the slot lists (each sorted by (i, j)).
-  template <class LinearPairs, class FaceSlots, class LinearWalls>
-  void build(std::size_t elements, const LinearPairs& linear_pairs, const FaceSlots& face_pairs,
-             const LinearWalls& linear_walls, const FaceSlots& face_walls) {
-    check(linear_pairs.size(), face_pairs.size() + linear_walls.size() + face_walls.size());
-    build_linear(elements, linear_pairs);
-    build_other(elements, face_pairs, linear_walls, face_walls);
-  }
   /// The sizes the entries can hold (before build_linear and build_other, which two threads may run at once).
   static bool fits(std::size_t linear_pairs, std::size_t others) {
     return linear_pairs < (std::size_t{1} << 31) && others < (std::size_t{1} << 29);

@@ -545,19 +545,19 @@ bool Simulation::rebuild_on(const Team& team) {
     return false;
   }
   if (t == 0) index_.build_linear(e.size(), linear_pairs_.pair);
-  if (t == other) {
-    index_.build_other(e.size(), face_pairs_, linear_walls_, face_walls_);
-    face_push_.resize(face_pairs_.size());
-    face_wall_push_.resize(face_walls_.size());
-    shares_.threads = 0;
-    if (threads_used() > 1) share_work(threads_used());
-  }
+  if (t == other) index_others();
   team.sync();
   return true;
 }
 
 void Simulation::index_contacts() {
-  index_.build(m_.elements.size(), linear_pairs_.pair, face_pairs_, linear_walls_, face_walls_);
+  ContactIndex::check(linear_pairs_.size(), face_pairs_.size() + linear_walls_.size() + face_walls_.size());
+  index_.build_linear(m_.elements.size(), linear_pairs_.pair);
+  index_others();
+}
+
+void Simulation::index_others() {
+  index_.build_other(m_.elements.size(), face_pairs_, linear_walls_, face_walls_);
   face_push_.resize(face_pairs_.size());
   face_wall_push_.resize(face_walls_.size());
   shares_.threads = 0;

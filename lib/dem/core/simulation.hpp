@@ -205,6 +205,7 @@ class Simulation {
   void gather_forces(const std::uint32_t* items, std::size_t count, bool from_weight);  // these elements
   void sum_wall_forces();
   void index_contacts();  // after every change of the slot lists (rebuild, restore)
+  void index_others();   // the index beyond the linear pairs, the face push buffers and the thread shares
   void share_work(int threads);  // shares_ for this many threads (after index_contacts or set_threads)
   // How integrate_range may advance elements [b, e): every one active and free (one vectorised pass); the
   // active ones free, some removed from the run (the same pass with a select); or element by element.
