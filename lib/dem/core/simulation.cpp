@@ -227,7 +227,7 @@ inline bool may_overstep(std::uint64_t all_below, std::uint64_t not_finite) {
 /// With `active` (Masked): elements removed from the run (a silo's outlet) keep their state, as the
 /// element-by-element loop leaves them; the others advance with the same operations (a select per value).
 template <bool K19, bool Masked = false>
-bool integrate_free(double* __restrict vx, double* __restrict vy, double* __restrict om, const double* __restrict fx,
+DEM2D_CLONES_AVX2 bool integrate_free(double* __restrict vx, double* __restrict vy, double* __restrict om, const double* __restrict fx,
                     const double* __restrict fy, const double* __restrict mom, const double* __restrict wm,
                     const double* __restrict wi, double* __restrict dx, double* __restrict dy, double* __restrict dphi,
                     double* __restrict x, double* __restrict y, double* __restrict phi, const double* __restrict r,
@@ -765,6 +765,19 @@ void Simulation::start_linear(std::int32_t law_index, double overlap, double du_
   }
 }
 
+namespace {
+// One overlapping candidate's geometry (K3, K5), made one contact ahead of its law (below).
+struct PairGeometry {
+  std::size_t k;
+  std::uint32_t i, j;
+  double overlap, nx, ny, du_n, du_s;
+};
+}  // namespace
+
+// The sweep runs in two stages one overlapping candidate apart: while the law and the scatter of one
+// contact run, the next overlapping candidate's distance, square root and normal are already under way
+// (they depend on nothing the law writes). Each stage performs the operations of the plain loop, and the
+// laws run and add their forces in slot order: the same results bit for bit.
 template <bool Shares>
 void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
@@ -784,30 +797,49 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
   std::uint8_t* const touching = linear_pairs_.touching.data();
   const std::int32_t* const law_of = linear_pairs_.law.data();  // read for touching pairs only (cold)
   LinearContactState* const state = linear_pairs_.state.data();
-  for (std::size_t k = b; k < end; ++k) {
-    const std::uint32_t i = pairs[k].i, j = pairs[k].j;
-    const double ddx = x[j] - x[i], ddy = y[j] - y[i];
-    const double rs = radius[i] + radius[j];
-    const double r2 = ddx * ddx + ddy * ddy;
-    if (r2 > rs * rs || !active[i] || !active[j]) {  // (K3): not touching
-      if (touching[k]) linear_pairs_.reset(k);
-      continue;
+  // Stage 1: from slot k on, ends the contacts of the candidates that do not overlap (K3) and makes the
+  // geometry of the first one that does; false at the end of the range.
+  auto next_overlap = [&](std::size_t& k, PairGeometry& g) {
+    for (; k < end; ++k) {
+      const std::uint32_t i = pairs[k].i, j = pairs[k].j;
+      const double ddx = x[j] - x[i], ddy = y[j] - y[i];
+      const double rs = radius[i] + radius[j];
+      const double r2 = ddx * ddx + ddy * ddy;
+      if (r2 > rs * rs || !active[i] || !active[j]) {  // (K3): not touching
+        if (touching[k]) linear_pairs_.reset(k);
+        continue;
+      }
+      const double dist = std::sqrt(r2);
+      g.nx = ddx / dist, g.ny = ddy / dist;  // cos α, sin α (K3): from i towards j
+      const double ux = dx[i] - dx[j], uy = dy[i] - dy[j];
+      g.du_n = ux * g.nx + uy * g.ny;  // (K5)
+      g.du_s = -ux * g.ny + uy * g.nx + radius[i] * dphi[i] + radius[j] * dphi[j];
+      g.overlap = rs - dist;
+      g.k = k++, g.i = i, g.j = j;
+      return true;
     }
-    LinearContactState& s = state[k];
-    const double dist = std::sqrt(r2);
-    const double nx = ddx / dist, ny = ddy / dist;  // cos α, sin α (K3): from i towards j
-    const double ux = dx[i] - dx[j], uy = dy[i] - dy[j];
-    const double du_n = ux * nx + uy * ny;                                      // (K5)
-    const double du_s = -ux * ny + uy * nx + radius[i] * dphi[i] + radius[j] * dphi[j];
-    const std::int32_t law_k = law_of[k];
-    if (!touching[k]) {
-      touching[k] = 1;
-      start_linear(law_k, rs - dist, du_n, du_s, e.mass[i], e.mass[j], s.eta_n, s.eta_s, s.h);
+    return false;
+  };
+  std::size_t k = b;
+  PairGeometry g{}, g_next{};
+  bool more = next_overlap(k, g);
+  while (more) {
+    more = next_overlap(k, g_next);
+    // Stage 2: the law of contact g (K6–K14) and its forces (K15).
+    const std::size_t c = g.k;
+    const std::uint32_t i = g.i, j = g.j;
+    LinearContactState& s = state[c];
+    const std::int32_t law_k = law_of[c];
+    if (!touching[c]) {
+      touching[c] = 1;
+      start_linear(law_k, g.overlap, g.du_n, g.du_s, e.mass[i], e.mass[j], s.eta_n, s.eta_s, s.h);
     }
     const PairLaw& law = laws[static_cast<std::size_t>(law_k)];
-    const ContactForce f = linear_contact_force(law.linear, s.eta_n, s.eta_s, du_n, du_s, inv_dt, s.h);
+    const ContactForce f = linear_contact_force(law.linear, s.eta_n, s.eta_s, g.du_n, g.du_s, inv_dt, s.h);
+    const double nx = g.nx, ny = g.ny;
+    g = g_next;
     if (f.opened) {  // (K8): the contact ends; if the cores still overlap it forms anew next step
-      linear_pairs_.reset(k);
+      linear_pairs_.reset(c);
       continue;
     }
     s.fn = f.fn;  // for outputs, and for gather_forces if an element is shared
