@@ -198,7 +198,8 @@ inline double reduced_mass(double a, double b) { return a * b / (a + b); }
 
 // Element loops of the hot path as functions of restrict-qualified parameters, so that the compiler
 // vectorises them (it does not trust restrict on local pointers). Every lane performs the scalar code's
-// operations in the same order, and nothing is contracted into FMAs: results are bit-identical.
+// operations in the same order, and nothing is contracted into FMAs: results are bit-identical. The free
+// integration also has an AVX2 clone (DEM2D_CLONES_AVX2: 4 lanes instead of 2, AVX2 has no FMA).
 
 /// One degree of freedom of free elements: v += (h f) w (K17, w = 1/m or 1/I), then the increment
 /// d = v Δt (K18) or d = (d + v Δt)/2 (K19), then x += d.
@@ -227,12 +228,14 @@ inline bool may_overstep(std::uint64_t all_below, std::uint64_t not_finite) {
 /// With `active` (Masked): elements removed from the run (a silo's outlet) keep their state, as the
 /// element-by-element loop leaves them; the others advance with the same operations (a select per value).
 template <bool K19, bool Masked = false>
-DEM2D_CLONES_AVX2 bool integrate_free(double* __restrict vx, double* __restrict vy, double* __restrict om, const double* __restrict fx,
-                    const double* __restrict fy, const double* __restrict mom, const double* __restrict wm,
-                    const double* __restrict wi, double* __restrict dx, double* __restrict dy, double* __restrict dphi,
-                    double* __restrict x, double* __restrict y, double* __restrict phi, const double* __restrict r,
-                    double h, double dt, double limit2r, std::size_t n,
-                    [[maybe_unused]] const std::uint8_t* __restrict active = nullptr) {
+DEM2D_CLONES_AVX2 bool integrate_free(double* __restrict vx, double* __restrict vy, double* __restrict om,
+                                      const double* __restrict fx, const double* __restrict fy,
+                                      const double* __restrict mom, const double* __restrict wm,
+                                      const double* __restrict wi, double* __restrict dx, double* __restrict dy,
+                                      double* __restrict dphi, double* __restrict x, double* __restrict y,
+                                      double* __restrict phi, const double* __restrict r, double h, double dt,
+                                      double limit2r, std::size_t n,
+                                      [[maybe_unused]] const std::uint8_t* __restrict active = nullptr) {
   std::uint64_t all_below = ~std::uint64_t{0}, not_finite = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if constexpr (!Masked) {

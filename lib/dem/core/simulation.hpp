@@ -189,6 +189,8 @@ class Simulation {
   // The contact laws of slots [b, e): each writes its forces into its slot (and face_push_) and adds them
   // at once to its elements, in slot order: to every element (one thread, Shares = false), or only to the
   // elements that are not shared between threads (thread_shares.hpp; gather_forces sums the shared ones).
+  // The disk-disk sweep in two stages one contact apart, and in AVX2 and plain builds (bench/README.md,
+  // "The disk–disk sweep in two stages").
   template <bool Shares> DEM2D_CLONES_AVX2 void sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t e);
   // The face sweeps in two builds, picked at start-up: plain x86-64 and AVX2 (three-operand VEX code, no
   // FMA: the same rounding bit for bit; bench/README.md, "PRE faces: the segment loop"). g++ only: clang
