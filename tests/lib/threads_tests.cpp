@@ -3,12 +3,16 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "dem/cases/case_file.hpp"
 #include "dem/core/simulation.hpp"
+#include "dem/core/worker_threads.hpp"
 #include "dem/run/checkpoint.hpp"
 #include "dem/run/run.hpp"
 #include "test_support.hpp"
@@ -309,5 +313,37 @@ TEST_CASE("Rebuilds at almost every step give the same candidates and slots bit 
     });
     CHECK(sims[0].rebuilds() > tc.steps / 2);  // the rebuilds were frequent
     for (auto& s : sims) CHECK(s.rebuilds() == sims[0].rebuilds());
+  }
+}
+
+TEST_CASE("wait_earlier waits for what the threads before the caller wrote, and not for the threads after it",
+          "[threads]") {
+  using namespace std::chrono_literals;
+  for (int nt : {2, 3, 4}) {
+    dem::WorkerThreads pool(nt);
+    for (int job = 0; job < 30; ++job) {
+      std::vector<int> written(static_cast<std::size_t>(nt), -1);  // plain ints: published by signal/wait
+      std::vector<std::vector<int>> seen(static_cast<std::size_t>(nt));
+      std::atomic<int> past_wait{0};
+      bool timed_out = false;
+      auto body = [&](int t) {
+        const auto k = static_cast<std::size_t>(t);
+        // the earlier the thread, the later it writes: a thread that does not wait reads -1
+        std::this_thread::sleep_for(std::chrono::microseconds(300 * (nt - 1 - t)));
+        if (t == nt - 1) {  // the last thread signals only once every other thread is past its wait
+          const auto give_up = std::chrono::steady_clock::now() + 2s;
+          while (past_wait.load() < nt - 1 && !timed_out) timed_out = std::chrono::steady_clock::now() > give_up;
+        }
+        written[k] = job;
+        pool.signal_done(t);
+        pool.wait_earlier(t);
+        for (int s = 0; s < t; ++s) seen[k].push_back(written[static_cast<std::size_t>(s)]);
+        ++past_wait;
+      };
+      pool.run(body);
+      CAPTURE(nt, job);
+      CHECK_FALSE(timed_out);  // a wait for a later thread would have held the others until the time-out
+      for (int t = 0; t < nt; ++t) CHECK(seen[static_cast<std::size_t>(t)] == std::vector<int>(static_cast<std::size_t>(t), job));
+    }
   }
 }

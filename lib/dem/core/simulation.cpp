@@ -370,7 +370,8 @@ void Simulation::apply_preloads() {
     WorkerThreads& pool = workers(threads_used());
     auto body = [&](int t) {
       sweep_share(0.0, static_cast<std::size_t>(t), false);  // onto the forces the elements hold
-      pool.barrier();
+      pool.signal_done(t);
+      pool.wait_earlier(t);  // the slots that touch t's shared elements belong to the threads before it
       gather_shared(static_cast<std::size_t>(t), false);
     };
     pool.run(body);
@@ -1231,11 +1232,14 @@ void Simulation::step() {
           return;
         }
       }
-      const double c0 = timed ? thread_seconds() : 0.0;  // the thread's work on its share, without the barrier's wait
+      const double c0 = timed ? thread_seconds() : 0.0;  // the thread's work on its share, without the waits
       sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
-      // (K17–K19) and the next step's rebuild test: the elements [mid, end) before the barrier (private: their
-      // forces are complete, and no other thread reads them), the rest after the shared ones are summed. So
-      // the barrier waits only for unequal sweeps plus integrations, not for each phase on its own.
+      pool.signal_done(t);
+      // (K17–K19) and the next step's rebuild test: the elements [mid, end) at once (private: their forces
+      // are complete, and no other thread reads them), the rest after the shared ones are summed. The shared
+      // elements of thread t are touched only by slots of the threads before it (slots are computed by
+      // the owner of their i, and j > i): t waits for those threads' sweeps, not for every thread (a
+      // barrier would make each wait for the slowest of both phases).
       const std::size_t b = shares_.first[k], end = shares_.first[k + 1];
       const std::size_t mid = plate ? end : std::max<std::size_t>(b, shares_.private_from[k]);
       Overstep late;
@@ -1243,7 +1247,7 @@ void Simulation::step() {
       if (mid < end)
         late = integrate_range(mid, end, dt_v, freedom(mid, end), limit2_step, limit2_next, displaced_late);
       const double c1 = timed ? thread_seconds() : 0.0;
-      pool.barrier();
+      pool.wait_earlier(t);  // their sweeps no longer read the shared elements, and their slots are complete
       const double c2 = timed ? thread_seconds() : 0.0;
       gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
       if (!plate) {

@@ -200,8 +200,9 @@ class Simulation {
   template <bool Shares> DEM2D_CLONES_AVX2 void sweep_face_walls(double inv_dt, std::size_t b, std::size_t e);
   void sweep_scatter(double inv_dt);  // one thread: every slot, scattering into the elements
   // Share `share` of a step on several threads: the slots its elements compute, scattered into its private
-  // elements (from m g if from_weight, else onto the forces they hold); then, after a barrier,
-  // gather_shared sums its shared elements' slots in the fixed order of the contact index.
+  // elements (from m g if from_weight, else onto the forces they hold); then, once the threads before it
+  // have swept (WorkerThreads::wait_earlier), gather_shared sums its shared elements' slots in the fixed
+  // order of the contact index.
   void sweep_share(double inv_dt, std::size_t share, bool from_weight);
   void gather_shared(std::size_t share, bool from_weight);
   void gather_forces(const std::uint32_t* items, std::size_t count, bool from_weight);  // these elements

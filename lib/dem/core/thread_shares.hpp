@@ -6,7 +6,8 @@
 // so a private element receives its slots in slot order on one thread: the one-thread sweep's order. An
 // element with a slot that another thread computes (a j whose partner i belongs to an earlier range, i.e.
 // near the boundaries between the ranges) is *shared*: nobody adds to it while the slots are computed;
-// after a barrier its owner sums its slots in the fixed order of the contact index (contact_index.hpp),
+// once the threads before its owner have swept (only they compute slots with it as j), its owner sums its
+// slots in the fixed order of the contact index (contact_index.hpp),
 // which is again the one-thread order. So the forces are the same bit for bit for any number of threads.
 // The ranges are balanced by an estimate of each element's work (its integration and the slots it
 // computes), weighted by the CPU time each thread measured per unit of estimate on its range (balance():
@@ -25,10 +26,10 @@ struct ThreadShares {
   std::vector<std::uint32_t> first;                // element ranges: threads + 1 boundaries
   std::array<std::vector<std::size_t>, 4> slots;   // per slot list (linear pairs, face pairs, linear
                                                    // walls, face walls): threads + 1 boundaries
-  std::vector<std::uint8_t> shared;                // per element: 1 if summed after the barrier
+  std::vector<std::uint8_t> shared;                // per element: 1 if summed after the sweeps
   std::vector<std::uint32_t> shared_start, shared_items;  // per thread, its shared elements (ascending)
   // per thread: its elements from here to the end of its range are all private (one past its last shared
-  // element; the first of its range if it has none): integrated before the step's barrier
+  // element; the first of its range if it has none): integrated right after the thread's sweep
   std::vector<std::uint32_t> private_from;
   std::vector<std::uint64_t> work;                 // per element: the work estimate of the last build
   // Measured cost per unit of work estimate of each thread's range [rate_first[t], rate_first[t+1])

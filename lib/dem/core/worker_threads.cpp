@@ -29,7 +29,7 @@ void await_change(const std::atomic<std::uint32_t>& a, std::uint32_t old) {
 
 }  // namespace
 
-WorkerThreads::WorkerThreads(int threads) : threads_(threads < 1 ? 1 : threads) {
+WorkerThreads::WorkerThreads(int threads) : threads_(threads < 1 ? 1 : threads), done_(static_cast<std::size_t>(threads_)) {
   workers_.reserve(static_cast<std::size_t>(threads_ - 1));
   for (int t = 1; t < threads_; ++t) workers_.emplace_back([this, t] { work(t); });
 }
@@ -59,6 +59,7 @@ void WorkerThreads::run_job(void (*job)(void*, int), void* context) {
   }
   job_ = job;
   context_ = context;
+  ++job_number_;  // published to the workers with the generation below
   busy_.store(static_cast<std::uint32_t>(threads_ - 1), std::memory_order_relaxed);
   generation_.fetch_add(1, std::memory_order_release);
   generation_.notify_all();
@@ -66,6 +67,18 @@ void WorkerThreads::run_job(void (*job)(void*, int), void* context) {
   for (std::uint32_t left; (left = busy_.load(std::memory_order_acquire)) != 0;) await_change(busy_, left);
 }
 
+void WorkerThreads::signal_done(int t) {
+  if (threads_ == 1) return;
+  Done& d = done_[static_cast<std::size_t>(t)];
+  d.job.store(job_number_, std::memory_order_release);
+  d.job.notify_all();
+}
+void WorkerThreads::wait_earlier(int t) {
+  for (int s = 0; s < t; ++s) {
+    const std::atomic<std::uint32_t>& job = done_[static_cast<std::size_t>(s)].job;
+    for (std::uint32_t seen; (seen = job.load(std::memory_order_acquire)) != job_number_;) await_change(job, seen);
+  }
+}
 void WorkerThreads::barrier() {
   if (threads_ == 1) return;
   const std::uint32_t pass = passed_.load(std::memory_order_acquire);

@@ -28,6 +28,12 @@ class WorkerThreads {
   }
   /// Inside body: returns once every thread has called it.
   void barrier();
+  /// Inside body: thread t says that its part of the job before this call is done (for wait_earlier).
+  void signal_done(int t);
+  /// Inside body: returns once every thread s < t has called signal_done(s) in this job. Thread 0 does not
+  /// wait. Weaker than a barrier: a thread that needs only what the threads before it wrote does not wait
+  /// for the threads after it.
+  void wait_earlier(int t);
 
  private:
   void run_job(void (*job)(void*, int), void* context);
@@ -42,6 +48,11 @@ class WorkerThreads {
   std::atomic<std::uint32_t> busy_{0};        // workers still running the job
   std::atomic<std::uint32_t> arrived_{0};     // threads at the barrier
   std::atomic<std::uint32_t> passed_{0};      // barriers passed
+  struct alignas(64) Done {                   // per thread, on a cache line of its own
+    std::atomic<std::uint32_t> job{0};        // the job in which the thread last called signal_done
+  };
+  std::vector<Done> done_;
+  std::uint32_t job_number_ = 0;              // of the running job (written before it starts)
 };
 
 }  // namespace dem
