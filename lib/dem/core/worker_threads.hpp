@@ -52,7 +52,8 @@ class WorkerThreads {
     std::atomic<std::uint32_t> job{0};        // the job in which the thread last called signal_done
   };
   std::vector<Done> done_;
-  std::uint32_t job_number_ = 0;              // of the running job (written before it starts)
+  std::uint32_t job_number_ = 0;              // of the running job (written before it starts); a stale
+                                              // flag equals it only after 2^32 jobs without a signal
 };
 
 }  // namespace dem
