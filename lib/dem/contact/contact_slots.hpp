@@ -21,12 +21,18 @@ struct LinearSlot {
   double nx = 0.0, ny = 0.0;   // normal of the last step, from i towards j
 };
 
-/// What a linear element–element contact keeps while it touches (zero otherwise): 64 bytes, one cache line.
-struct alignas(64) LinearContactState {
+/// What a linear element–element contact carries from step to step while it touches (zero otherwise):
+/// 32 bytes, two slots to a cache line.
+struct alignas(32) LinearContactState {
   double eta_n = 0.0, eta_s = 0.0;  // dashpots of this pair [N·s/m]
   LinearContactHistory h;
-  double fn = 0.0, fs = 0.0;        // forces of the last step (outputs), compression positive [N]
-  double nx = 0.0, ny = 0.0;        // normal of the last step, from i towards j
+};
+
+/// What a step's law gives a touching linear element–element contact, for outputs: written only by the
+/// steps that keep it (Simulation::keep_contact_forces), since nothing in the next step reads it.
+struct alignas(32) LinearContactResultant {
+  double fn = 0.0, fs = 0.0;  // forces of the step, compression positive [N]
+  double nx = 0.0, ny = 0.0;  // normal of the step, from i towards j
 };
 
 struct SlotPair {
@@ -35,21 +41,24 @@ struct SlotPair {
 
 /// The linear element–element slots, one per candidate pair, in columns (bench/README.md, "Where the time
 /// and the bytes go"): the sweep reads the pair and `touching` of every candidate (9 bytes), the law and
-/// the state only of the pairs whose cores overlap or that touched at the last step. Slot k is (pair[k], touching[k], law[k], state[k]); a slot that
-/// does not touch has a zero state. Sorted by (i, j) like every slot list.
+/// the state only of the pairs whose cores overlap or that touched at the last step. Slot k is (pair[k],
+/// touching[k], law[k], state[k], resultant[k]); a slot that does not touch has a zero state, and its
+/// resultant means nothing. Sorted by (i, j) like every slot list. The resultants do not move with their
+/// slots (merge, move): every step that keeps them writes those of every touching slot afresh.
 struct LinearPairSlots {
   std::vector<SlotPair> pair;
   std::vector<std::uint8_t> touching;
   std::vector<std::int32_t> law;  // index into Model::laws
   std::vector<LinearContactState> state;
+  std::vector<LinearContactResultant> resultant;
 
   std::size_t size() const { return pair.size(); }
   std::size_t capacity() const { return pair.capacity(); }
   void reserve(std::size_t n) {
-    pair.reserve(n), touching.reserve(n), law.reserve(n), state.reserve(n);
+    pair.reserve(n), touching.reserve(n), law.reserve(n), state.reserve(n), resultant.reserve(n);
   }
   void resize(std::size_t n) {
-    pair.resize(n), touching.resize(n), law.resize(n), state.resize(n);
+    pair.resize(n), touching.resize(n), law.resize(n), state.resize(n), resultant.resize(n);
   }
   void clear() { resize(0); }
   void move(std::size_t to, std::size_t from) {

@@ -23,8 +23,6 @@ struct OutletLine {
   double below(double x, double y) const { return dot(down, Vec2{x, y} - mid) - depth; }
 };
 
-double below_outlet(const Model& m, double x, double y) { return OutletLine(m).below(x, y); }
-
 /// Whether an active element may lie below the outlet line: the sign bit of its distance below the line is
 /// clear (below > 0, or +0, or a NaN without sign): a branch-free pass the compiler vectorises, since in most
 /// steps no disk crosses the line.
@@ -37,6 +35,8 @@ bool any_may_be_below(const OutletLine& line, const double* __restrict x, const 
 }
 
 }  // namespace
+
+double below_outlet(const Model& m, double x, double y) { return OutletLine(m).below(x, y); }
 
 bool may_discharge(const Model& m) {
   if (!m.discharge.enabled) return false;

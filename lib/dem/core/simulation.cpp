@@ -645,7 +645,7 @@ void Simulation::gather_forces(const std::uint32_t* items, std::size_t count, bo
   double* const fy_e = e.fy.data();
   double* const moment = e.moment.data();
   const std::uint8_t* const lp_touching = linear_pairs_.touching.data();
-  const LinearContactState* const lp = linear_pairs_.state.data();
+  const LinearContactResultant* const lp = linear_pairs_.resultant.data();
   const LinearSlot* const lw = linear_walls_.data();
   const ElementPush* const fp = face_push_.data();
   const ElementPush* const fw = face_wall_push_.data();
@@ -663,7 +663,7 @@ void Simulation::gather_forces(const std::uint32_t* items, std::size_t count, bo
     for (std::uint32_t n = ls[k]; n < ls[k + 1]; ++n) {
       const std::uint32_t entry = li[n];
       const std::uint32_t slot = ContactIndex::linear_slot(entry);
-      const LinearContactState& s = lp[slot];
+      const LinearContactResultant& s = lp[slot];
       const bool on = lp_touching[slot] != 0;
       // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
       const double sfx = -s.fn * s.nx + s.fs * s.ny, sfy = -s.fn * s.ny - s.fs * s.nx;
@@ -801,6 +801,8 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
   std::uint8_t* const touching = linear_pairs_.touching.data();
   const std::int32_t* const law_of = linear_pairs_.law.data();  // read for touching pairs only (cold)
   LinearContactState* const state = linear_pairs_.state.data();
+  LinearContactResultant* const resultant = linear_pairs_.resultant.data();
+  const bool keep = keep_forces_;
   // Stage 1: from slot k on, ends the contacts of the candidates that do not overlap (K3) and makes the
   // geometry of the first one that does; false at the end of the range.
   auto next_overlap = [&](std::size_t& k, PairGeometry& g) {
@@ -846,10 +848,8 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
       linear_pairs_.reset(c);
       continue;
     }
-    s.fn = f.fn;  // for outputs, and for gather_forces if an element is shared
-    s.fs = f.fs;
-    s.nx = nx;
-    s.ny = ny;
+    // for outputs, if this step keeps them, and for gather_forces if an element is shared
+    if (keep || (Shares && (shared[i] || shared[j]))) resultant[c] = {f.fn, f.fs, nx, ny};
     // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
     const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;
     if constexpr (!Shares) {
@@ -1284,6 +1284,7 @@ void Simulation::step() {
   move_walls();
   if (limit2_next >= 0.0) tested_step_ = step_ + 1;
   ++step_;
+  forces_step_ = keep_forces_ ? step_ : -1;
   time_ = static_cast<double>(step_) * m_.numerics.dt;
 }
 
@@ -1387,12 +1388,19 @@ Energies Simulation::energies() const {
   return en;
 }
 
+void Simulation::require_contact_forces(const char* reader) const {
+  if (!contact_forces_current())
+    throw std::logic_error(fmt::format("Simulation::{}: the contact forces of step {} were not kept (keep_contact_forces)",
+                                       reader, step_));
+}
+
 std::vector<ContactView> Simulation::contacts() const {
+  require_contact_forces("contacts");
   std::vector<ContactView> out;
   const LinearPairSlots& lp = linear_pairs_;
   for (std::size_t k = 0; k < lp.size(); ++k) {
     if (!lp.touching[k]) continue;
-    const LinearContactState& s = lp.state[k];
+    const LinearContactResultant& s = lp.resultant[k];
     out.push_back({lp.pair[k].i, lp.pair[k].j, false, s.nx, s.ny, s.fn, s.fs, 1});
   }
   for (const auto& s : face_pairs_)
@@ -1436,6 +1444,7 @@ std::size_t Simulation::contact_count() const {
 }
 
 std::pair<double, std::size_t> Simulation::contact_force_sum() const {
+  require_contact_forces("contact_force_sum");
   double sum = 0.0;
   std::size_t n = 0;
   auto add = [&](bool touching, double fn, double fs) {
@@ -1444,7 +1453,7 @@ std::pair<double, std::size_t> Simulation::contact_force_sum() const {
     ++n;
   };
   for (std::size_t k = 0; k < linear_pairs_.size(); ++k)
-    add(linear_pairs_.touching[k], linear_pairs_.state[k].fn, linear_pairs_.state[k].fs);
+    add(linear_pairs_.touching[k], linear_pairs_.resultant[k].fn, linear_pairs_.resultant[k].fs);
   for (const auto& s : linear_walls_) add(s.touching, s.f.fn, s.f.fs);
   for (const auto& s : face_pairs_) add(s.touching, s.f.p, s.f.q);
   for (const auto& s : face_walls_) add(s.touching, s.f.p, s.f.q);
@@ -1466,7 +1475,8 @@ ContactView Simulation::contact(std::uint32_t i, std::uint32_t j, bool wall) con
                                      [](const SlotPair& s, std::uint64_t k) { return key(s.i, s.j) < k; });
     const std::size_t k = static_cast<std::size_t>(it - p.begin());
     if (it != p.end() && it->i == i && it->j == j && linear_pairs_.touching[k]) {
-      const LinearContactState& s = linear_pairs_.state[k];
+      require_contact_forces("contact");
+      const LinearContactResultant& s = linear_pairs_.resultant[k];
       return {i, j, wall, s.nx, s.ny, s.fn, s.fs, 1};
     }
   }

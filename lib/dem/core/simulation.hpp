@@ -83,6 +83,13 @@ class Simulation {
   /// Summed in fixed chunks (energies() in simulation.cpp): the same bits on any number of threads.
   Energies energies() const;
   static constexpr std::size_t kEnergyChunk = 4096;
+  /// Whether the steps keep each linear element–element contact's forces and normal (its resultant) for
+  /// the readers below: on unless switched off. Off, a step skips 32 bytes per contact that nothing in the
+  /// next step reads (bench/README.md, "Contact forces kept only for the steps that report them"); the
+  /// readers then refuse (std::logic_error) until a step keeps them again. Wall contacts keep theirs always.
+  void keep_contact_forces(bool on) { keep_forces_ = on; }
+  bool contact_forces_current() const { return forces_step_ == step_; }
+
   std::vector<ContactView> contacts() const;
   std::size_t contact_count() const;  // touching pairs and wall contacts
   /// Sum of |f_n n + f_s t| over the contacts that carry force, and their number (no allocation).
@@ -282,6 +289,9 @@ class Simulation {
   double skin_ = 0.0;
   double time_ = 0.0;
   std::int64_t step_ = 0;
+  bool keep_forces_ = true;        // keep_contact_forces
+  std::int64_t forces_step_ = 0;   // the step whose contact resultants the slots hold (−1: none)
+  void require_contact_forces(const char* reader) const;
   std::int64_t rebuilds_ = 0;
   BasePlateTravel plate_travel_;
   bool preloading_ = false;  // the static zeroth step of apply_preloads()

@@ -104,8 +104,8 @@ void renumber_pair_slots(LinearPairSlots& slots, const std::vector<std::uint32_t
     std::uint32_t i = new_of_old[p.i], j = new_of_old[p.j];
     if (i > j) {  // turned round: the normal from the new i towards the new j is the old one reversed
       std::swap(i, j);
-      slots.state[k].nx = -slots.state[k].nx;
-      slots.state[k].ny = -slots.state[k].ny;
+      slots.resultant[k].nx = -slots.resultant[k].nx;
+      slots.resultant[k].ny = -slots.resultant[k].ny;
     }
     p = {i, j};
   }
@@ -119,10 +119,12 @@ void renumber_pair_slots(LinearPairSlots& slots, const std::vector<std::uint32_t
   std::vector<std::uint8_t> t;
   std::vector<std::int32_t> l;
   std::vector<LinearContactState> st;
+  std::vector<LinearContactResultant> re;
   permute(slots.pair, order, p);
   permute(slots.touching, order, t);
   permute(slots.law, order, l);
   permute(slots.state, order, st);
+  permute(slots.resultant, order, re);
 }
 
 template <class Slot>

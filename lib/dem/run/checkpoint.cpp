@@ -18,7 +18,8 @@ constexpr char kMagic[] = "DEM2D-CHECKPOINT\n";
 // A new field in one of these types must be added to write_state / read_state below; these
 // assertions fail the build until it is (the sizes are those of the fields listed there).
 static_assert(sizeof(LinearSlot) == 88, "LinearSlot changed: add the new field to the checkpoint (checkpoint.cpp)");
-static_assert(sizeof(LinearContactState) == 64 && sizeof(SlotPair) == 8 && sizeof(LinearPairSlots) == 4 * sizeof(std::vector<double>),
+static_assert(sizeof(LinearContactState) == 32 && sizeof(LinearContactResultant) == 32 && sizeof(SlotPair) == 8 &&
+                  sizeof(LinearPairSlots) == 5 * sizeof(std::vector<double>),
               "LinearPairSlots changed: add the new field to the checkpoint (checkpoint.cpp)");
 static_assert(sizeof(SegmentState) == 32 && sizeof(FaceConstants) == 48 && sizeof(FaceForce) == 32 &&
                   sizeof(FaceHistory) == 24 + 32 * kMaxSegments &&
@@ -119,8 +120,9 @@ void put_slots(Writer& w, const LinearPairSlots& v) {
   w.put<std::uint64_t>(v.size());
   for (std::size_t k = 0; k < v.size(); ++k) {
     const LinearContactState& s = v.state[k];
+    const LinearContactResultant f = v.touching[k] ? v.resultant[k] : LinearContactResultant{};  // else: stale
     w.put(v.pair[k].i), w.put(v.pair[k].j), w.put(v.law[k]), w.put(v.touching[k]), w.put(s.eta_n), w.put(s.eta_s);
-    w.put(s.h.en), w.put(s.h.es), w.put(s.fn), w.put(s.fs), w.put(s.nx), w.put(s.ny);
+    w.put(s.h.en), w.put(s.h.es), w.put(f.fn), w.put(f.fs), w.put(f.nx), w.put(f.ny);
   }
 }
 void get_slots(Reader& r, LinearPairSlots& v) {
@@ -130,10 +132,11 @@ void get_slots(Reader& r, LinearPairSlots& v) {
   v.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     LinearContactState& s = v.state[k];
+    LinearContactResultant& f = v.resultant[k];
     v.pair[k].i = r.get<std::uint32_t>(), v.pair[k].j = r.get<std::uint32_t>(), v.law[k] = r.get<std::int32_t>();
     v.touching[k] = r.get<std::uint8_t>(), s.eta_n = r.get<double>(), s.eta_s = r.get<double>();
-    s.h.en = r.get<double>(), s.h.es = r.get<double>(), s.fn = r.get<double>(), s.fs = r.get<double>();
-    s.nx = r.get<double>(), s.ny = r.get<double>();
+    s.h.en = r.get<double>(), s.h.es = r.get<double>(), f.fn = r.get<double>(), f.fs = r.get<double>();
+    f.nx = r.get<double>(), f.ny = r.get<double>();
   }
 }
 template <class Slot>
@@ -167,6 +170,7 @@ struct SimulationAccess {
     w.put<std::uint64_t>(sim.m_.walls.size());
     for (const Wall& wl : sim.m_.walls) w.put(wl.a), w.put(wl.b), w.put(wl.increment), w.put(wl.force);
     w.put_vec(sim.candidates_);
+    sim.require_contact_forces("write_checkpoint");  // saved: a restart's first outputs report them
     put_slots(w, sim.linear_pairs_);
     put_slots(w, sim.linear_walls_);
     put_slots(w, sim.face_pairs_);
@@ -213,6 +217,7 @@ struct SimulationAccess {
     sim.skin_ = r.get<double>(), sim.time_ = r.get<double>(), sim.step_ = r.get<std::int64_t>();
     sim.rebuilds_ = r.get<std::int64_t>(), sim.preloading_ = r.get<bool>();
     sim.tested_step_ = -1;  // the next step makes its own rebuild test
+    sim.forces_step_ = sim.step_;  // the contact resultants were saved with the step (write_state)
     if (r.pos != r.in.size()) throw OutputError(fmt::format("{}: corrupt checkpoint (trailing state bytes)", ck.case_path));
     sim.index_contacts();  // derived from the slot lists, not saved
     if (!other_case) return;

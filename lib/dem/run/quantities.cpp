@@ -58,6 +58,11 @@ double mean_increment(const Simulation& s) {
   return n ? sum / static_cast<double>(n) : 0.0;
 }
 
+bool reads_contact_forces(const std::string& name) {
+  const auto p = split(name, '.');
+  return name == "unbalanced_force_ratio" || (p.size() == 3 && (p[1] == "fn" || p[1] == "fs" || p[1] == "links"));
+}
+
 double unbalanced_force_ratio(const Simulation& s) {
   const Elements& e = s.model().elements;
   double sum = 0.0;

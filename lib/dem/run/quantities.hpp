@@ -41,6 +41,9 @@ double unbalanced_force_ratio(const Simulation& s);
 
 /// Compiles a quantity name against a model; throws std::invalid_argument naming what is wrong.
 QuantityFn compile_quantity(const std::string& name, const Model& m);
+/// Whether a quantity may read the contact forces of element–element contacts (Simulation::contact,
+/// contact_force_sum): a run that reports it keeps them at every step (Simulation::keep_contact_forces).
+bool reads_contact_forces(const std::string& name);
 
 /// The SI unit of a quantity name (one compile_quantity accepts): "s", "m", "N", "J", "rad", "m/s",
 /// "rad/s", "N*m", "1" (a count or a ratio); "unknown" for a name it does not know.

@@ -432,6 +432,15 @@ RunResult run_case(Case c, const RunOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   auto last_print = t0;
   const std::int64_t check_every = 64;
+  // Contact forces (each linear element–element contact's resultant) are kept by every step if anything
+  // the case asks for may read them after any step (a series, picture, snapshot, probe, stop criterion or
+  // checkpoint); else only by the last step, and by the step that ends the run on a signal
+  // (Simulation::keep_contact_forces: a reader of a step that did not keep them throws).
+  bool series_forces = false;
+  for (const auto& name : c.output.series) series_forces = series_forces || reads_contact_forces(name);
+  const bool forces_every_step = series_forces || c.output.vtk || c.output.any_pictures() || !probes.empty() ||
+                                 c.stop.any() || static_cast<bool>(peak_quantity) || opt.checkpoint_every > 0 ||
+                                 opt.checkpoint_at_end;
   const auto slit = static_cast<std::uint32_t>(std::max(m.discharge.slit, 0));
   for (std::int64_t k = first_step; k < total_steps; ++k) {
     // [discharge] open_at: the gate opens at the first step that starts at or after open_at (derived
@@ -441,6 +450,8 @@ RunResult run_case(Case c, const RunOptions& opt) {
       loop.slit_opened = true;
       loop.last_release = sim.time();
     }
+    sim.keep_contact_forces(forces_every_step || k + 1 == total_steps || interrupt_signal() != 0 ||
+                            sim.steps() + 1 == opt.interrupt_at_step);
     sim.step();
     if (k == first_step && energy_limit <= 0.0) {
       const Energies e1 = sim.energies();
@@ -613,7 +624,8 @@ RunResult run_case(Case c, const RunOptions& opt) {
     // Checkpoints, and SIGINT / SIGTERM (or the test hook): stop here and write everything.
     if (opt.checkpoint_every > 0 && sim.steps() % opt.checkpoint_every == 0 && !last) checkpoint();
     const int sig = interrupt_signal();
-    if (sig != 0 || (opt.interrupt_at_step > 0 && sim.steps() == opt.interrupt_at_step)) {
+    // (a signal during a step that did not keep the contact forces: the next step keeps them and stops)
+    if ((sig != 0 && sim.contact_forces_current()) || (opt.interrupt_at_step > 0 && sim.steps() == opt.interrupt_at_step)) {
       res.status = "interrupted";
       res.message = fmt::format("stopped at t = {:.6g} s (step {}) by {}", sim.time(), sim.steps(),
                                 sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : sig ? fmt::format("signal {}", sig) : "request");
