@@ -17,8 +17,10 @@ Cases (written into the output folder):
           the gate); its rate counts the disks at the start (both codes lose disks through the slit).
 --quick: fewer steps (a smoke run of the whole suite in about a minute; the ratios are noisier).
 
-Every run repeats --reps times (default 3), all codes interleaved; the best run of each counts (other load
-only slows a run down); peak memory is the smallest maximum resident set size of the runs (/usr/bin/time).
+Every run repeats --reps times (default 3), all codes interleaved, in an order rotated from rep to rep; the best
+run of each counts (other load only slows a run down); peak memory is the smallest maximum resident set size of
+the runs (/usr/bin/time). The ratios within dem2d (2 threads / 1 thread from 10^4 disks, PRE N = 2 ... 5 / N = 1)
+are also measured interleaved block by block in one process (build/bench/dem2d_alternate, --alternate PATH).
 --dem2d LABEL=PATH (repeatable) compares several dem2d builds, e.g. before=/tmp/dem2d_main after=build/app/dem2d;
 a build without --threads is run without it (one thread).
 
@@ -31,6 +33,7 @@ import math
 import os
 import re
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -105,6 +108,8 @@ def best(runs):
     b = dict(max(runs, key=lambda r: r["rate"]))
     b["memory"] = min(r["memory"] for r in runs)
     b["all_rates"] = [r["rate"] for r in runs]
+    for key in ("rate", "rate0"):
+        b[f"median_{key}"] = statistics.median(r[key] for r in runs)
     return b
 
 
@@ -168,6 +173,36 @@ def svg_plot(series, path):
     path.write_text("\n".join(out) + "\n")
 
 
+def run_alternated(a, cases, out):
+    """The ratios within dem2d (2 threads against 1 on the settles from 10^4 disks; the PRE lattice at N = 2 ... 5
+    against N = 1), each --reps times with dem2d_alternate: both runs of a ratio in one process, 50-step blocks
+    in turn, so that they meet the same moments of the machine. [] without the tool."""
+    tool = Path(a.alternate)
+    if not os.access(tool, os.X_OK):
+        print(f"bench/suite.py: {tool} not found (cmake --build build --target dem2d_alternate): no interleaved ratios",
+              file=sys.stderr)
+        return []
+    pairs = [(f"{c}@1", f"{c}@2", f"settle {label}: 1 thread", f"2 threads") for kind, label, c, _ in cases
+             if kind == "settle" and label != "1e3"]  # 10^3: one thread whatever --threads says (under 4096 per thread)
+    pre = {label: c for kind, label, c, _ in cases if kind == "pre"}
+    if "N1" in pre:
+        pairs += [(str(pre["N1"]), str(pre[f"N{n}"]), "PRE lattice N = 1", f"N = {n}") for n in range(2, 6)
+                  if f"N{n}" in pre]
+    result = []
+    for ra, rb, la, lb in pairs:
+        runs = []
+        for rep in range(a.reps):
+            j = out / f"alternate_{len(result)}_{rep}.json"
+            r = subprocess.run([str(tool), ra, rb, "--json", str(j)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                               text=True)
+            if r.returncode != 0:
+                sys.exit(f"bench/suite.py: dem2d_alternate {ra} {rb} failed:\n{r.stdout[-2000:]}")
+            runs.append(json.load(open(j))["speed_ratio_b_over_a"])
+        result.append({"a": la, "b": lb, "runs": runs})
+        print(f"alternated: {la} / {lb} done", file=sys.stderr, flush=True)
+    return result
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true")
@@ -176,6 +211,8 @@ def main():
     ap.add_argument("--out", type=Path)
     ap.add_argument("--dem2d", action="append", default=[], help="LABEL=PATH (default dem2d=build/app/dem2d)")
     ap.add_argument("--lmp", default="lmp")
+    ap.add_argument("--alternate", default=str(ROOT / "build/bench/dem2d_alternate"),
+                    help="dem2d_alternate, for the ratios within dem2d interleaved block by block")
     ap.add_argument("--no-pre", action="store_true")
     ap.add_argument("--only-pre", action="store_true", help="only the PRE lattice N = 1 ... 5 (no settle, shuffled, silo)")
     a = ap.parse_args()
@@ -234,15 +271,21 @@ def main():
     runs = {}  # (kind, label, code) -> [run]
     for rep in range(1, a.reps + 1):
         for kind, label, case, lf in cases:
-            for blabel, b in builds:
-                for th in ((1, 2) if kind == "settle" else (1,)):
+            # the codes of a case, in an order rotated by one from rep to rep: a code that always ran first
+            # would always meet the machine as the previous case left it (measured: bench/README.md)
+            jobs = [(bl, b, th) for bl, b in builds for th in ((1, 2) if kind == "settle" else (1,))]
+            if lmp and kind in ("settle", "silo"):
+                jobs.append(("LAMMPS", None, 1))
+            shift = (rep - 1) % len(jobs)
+            for blabel, b, th in jobs[shift:] + jobs[:shift]:
+                if blabel == "LAMMPS":
+                    r = run_lammps(lmp, lf, rep, "in.silo" if kind == "silo" else "in.settle")
+                    runs.setdefault((kind, label, "LAMMPS"), []).append(r)
+                else:
                     r = run_dem2d(b, case, out / f"run_{kind}_{label}_{blabel}_t{th}_{rep}", th, threads_ok[blabel])
                     runs.setdefault((kind, label, f"{blabel} {th}T"), []).append(r)
-            if kind == "settle" and lmp:
-                runs.setdefault((kind, label, "LAMMPS"), []).append(run_lammps(lmp, lf, rep))
-            if kind == "silo" and lmp:
-                runs.setdefault((kind, label, "LAMMPS"), []).append(run_lammps(lmp, lf, rep, "in.silo"))
             print(f"rep {rep}: {kind} {label} done", file=sys.stderr, flush=True)
+    alternated = run_alternated(a, cases, out)
 
     res = {"cpu": cpu_model(), "cores": os.cpu_count(), "load_average": os.getloadavg(), "reps": a.reps,
            "quick": a.quick, "builds": dict(builds), "best": {}}
@@ -286,6 +329,16 @@ def main():
         for c in codes + (["LAMMPS"] if lmp else []):
             if get(c):
                 plot.setdefault(c, []).append((get(c)["elements"], 1e9 / get(c)["rate"]))
+    if lmp:  # the same ratios from the medians of the reps: the best run favours whichever code met a fast moment
+        lines += ["", "The same from the medians of the reps (M disk-steps/s; 1T / LAMMPS):", ""]
+        for label, *_ in settle:
+            get = lambda c: B.get(f"settle {label} {c}")
+            lam = get("LAMMPS")
+            if not lam:
+                continue
+            parts = [f"{c} {get(c)['median_rate'] / 1e6:.1f} ({get(c)['median_rate'] / lam['median_rate']:.2f})"
+                     for c in codes if get(c) and c.endswith("1T")]
+            lines.append(f"- {label} disks: LAMMPS {lam['median_rate'] / 1e6:.1f}; " + "; ".join(parts))
     lines.append("")
     lines.append("Slope of log(time per step) against log(disks), least squares over the sizes (1 = flat cost "
                  "per disk-step):")
@@ -313,13 +366,27 @@ def main():
     silo = {k[len("silo 3e4 "):]: B[k] for k in B if k.startswith("silo ")}
     if silo:
         lines += ["", "| silo discharge, 3x10^4 disks | M disk-steps/s (disks at the start) | / LAMMPS | "
-                  "peak memory [B/disk] | / LAMMPS memory | disks out |", "|---|---|---|---|---|---|"]
+                  "peak memory [B/disk] | / LAMMPS memory | disks out | / LAMMPS, medians of the reps |",
+                  "|---|---|---|---|---|---|---|"]
         lam = silo.get("LAMMPS")
         for code, g in silo.items():
             ratio = f"{g['rate0'] / lam['rate0']:.2f}" if lam else "-"
             mem = f"{g['memory'] / lam['memory']:.2f}" if lam else "-"
+            med = f"{g['median_rate0'] / lam['median_rate0']:.2f}" if lam else "-"
             lines.append(f"| {code} | {g['rate0'] / 1e6:.2f} | {ratio} | {g['memory'] / g['elements0']:.0f} | {mem} | "
-                         f"{g['discharged']} |")
+                         f"{g['discharged']} | {med} |")
+    if alternated:
+        res["alternated"] = alternated
+        lines += ["", "Interleaved block by block in one process (`dem2d_alternate`, 50-step blocks; " + str(a.reps) +
+                  " runs each): the speed ratio B / A of each pair of blocks; the median of the runs' medians, and the "
+                  "ratio of the total times of each run, smallest and largest.", "",
+                  "| A | B | speed B / A, median | B / A of the totals, per run | cost B / A (median) |",
+                  "|---|---|---|---|---|"]
+        for r in alternated:
+            med = statistics.median(x["median"] for x in r["runs"])
+            tot = [x["of_totals"] for x in r["runs"]]
+            cost = f"{1 / med:.3f}" if r["a"].startswith("PRE") else "-"
+            lines.append(f"| {r['a']} | {r['b']} | {med:.3f} | {min(tot):.3f} … {max(tot):.3f} | {cost} |")
     table = "\n".join(lines) + "\n"
     (out / "table.md").write_text(table)
     json.dump(res, open(out / "results.json", "w"), indent=2)

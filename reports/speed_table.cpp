@@ -20,8 +20,10 @@ namespace fs = std::filesystem;
 
 const char* about =
     "Measured by <code>bench/suite.py</code> (bench/README.md): dem2d and LAMMPS <code>gran/hooke/history</code> on the "
-    "same cases, interleaved, the best of several runs of each; rates in element-steps per second of the time loop, "
-    "ratios taken within the one run. Speed is measured there and never in the tests.";
+    "same cases, interleaved, the best of several runs of each (and the medians); rates in element-steps per second "
+    "of the time loop, ratios taken within the one run; the ratios within dem2d (threads, PRE segments) also "
+    "interleaved block by block in one process (<code>dem2d_alternate</code>). Speed is measured there and never "
+    "in the tests.";
 
 /// A viewBox from the width and height if the SVG has none (bench/suite.py's plots of 22 November 2026),
 /// so that the page may scale it without stretching its box.

@@ -60,8 +60,9 @@ if [[ ! -d "$src" ]]; then
 fi
 python3 "$tool" check "$mutants" "$src" >/dev/null || { python3 "$tool" check "$mutants" "$src"; exit 1; }
 
-targets=(dem2d unit_lib unit_reference unit_engine)
-build_all() { nice -n 15 cmake --build "$build" -j2 --target "${targets[@]}" >"$work/build.log" 2>&1; }
+# every target: the unit label also runs the fuzz replays and the dem2d_alternate checks (a list of targets
+# here fell behind the tests once: their executables were missing and the baseline failed)
+build_all() { nice -n 15 cmake --build "$build" -j2 >"$work/build.log" 2>&1; }
 run_ctest() {  # label timeout
   nice -n 15 ctest --test-dir "$build" -L "$1" --stop-on-failure --timeout "$2" -j2 >"$work/ctest.log" 2>&1
 }

@@ -56,6 +56,9 @@ TEST_CASE("A run writes the series CSV, the JSON summary with provenance, and VT
   CHECK(j["steps"] == 2000);
   for (const char* k : {"code_version", "build_type", "date", "machine"}) CHECK(j["provenance"].contains(k));
   CHECK(j["element_steps_per_second"].get<double>() > 0.0);
+  // the time loop's CPU time: positive, and on one thread not above its wall-clock time (1 ms: clock reads)
+  CHECK(j["cpu_seconds"].get<double>() > 0.0);
+  CHECK(j["cpu_seconds"].get<double>() <= j["wall_seconds"].get<double>() + 1e-3);
   CHECK(j["case_as_read"]["numerics"]["dt"] == "1e-5 s");  // the TOML after overrides, as written
   CHECK(j["provenance"].contains("compiler"));
   // the resolved case: SI numbers, every default filled in

@@ -21,7 +21,7 @@ import sys
 import time
 from pathlib import Path
 
-VOLATILE = {"provenance", "wall_seconds", "wall_time_s", "element_steps_per_second",
+VOLATILE = {"provenance", "wall_seconds", "cpu_seconds", "wall_time_s", "element_steps_per_second",
             "mean element-steps per second", "eps"}
 
 

@@ -138,6 +138,9 @@ class Simulation {
     min_per_thread_ = min_per_thread < 1 ? 1 : min_per_thread;
   }
   int threads() const { return threads_; }
+  /// CPU time used so far by this simulation's worker threads (0 before a step on several threads) [s]; with
+  /// the stepping thread's own clock, a run's CPU time even when other runs share the process (studies).
+  double worker_cpu_seconds() const { return workers_.pool ? workers_.pool->cpu_seconds() : 0.0; }
   int threads_used() const;  // what a step uses: threads() limited by min_per_thread
   /// On several threads, a step measures each thread's CPU time on its share; every kBalanceSteps steps,
   /// if the busiest thread took more than kBalanceTolerance above the mean, the boundaries between the

@@ -1,5 +1,8 @@
 #include "dem/core/worker_threads.hpp"
 
+#include <pthread.h>
+#include <time.h>
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #endif
@@ -39,6 +42,17 @@ WorkerThreads::~WorkerThreads() {
   generation_.fetch_add(1, std::memory_order_release);
   generation_.notify_all();
   for (std::thread& w : workers_) w.join();
+}
+
+double WorkerThreads::cpu_seconds() const {
+  double sum = 0.0;
+  for (const std::thread& w : workers_) {
+    clockid_t clock{};
+    timespec ts{};
+    if (pthread_getcpuclockid(const_cast<std::thread&>(w).native_handle(), &clock) == 0 && clock_gettime(clock, &ts) == 0)
+      sum += static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+  }
+  return sum;
 }
 
 void WorkerThreads::work(int t) {

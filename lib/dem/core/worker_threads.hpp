@@ -20,6 +20,8 @@ class WorkerThreads {
   WorkerThreads& operator=(const WorkerThreads&) = delete;
 
   int size() const { return threads_; }
+  /// CPU time that the workers (not the caller) have used since they started [s].
+  double cpu_seconds() const;
 
   /// Runs body(t) for t = 0 … size() − 1, t = 0 on the caller's thread; returns when every call returned.
   template <class Body>

@@ -33,7 +33,8 @@ struct RunResult {
   std::string message;  // what happened, for a blow-up or a settle stop
   std::int64_t steps = 0;
   double time = 0.0;                 // simulated [s]
-  double wall_seconds = 0.0;
+  double wall_seconds = 0.0;          // the time loop, by the clock on the wall
+  double cpu_seconds = 0.0;           // the time loop's CPU time: the stepping thread and the run's workers
   double element_steps_per_second = 0.0;
   double stability_limit = 0.0;      // [s]
   std::map<std::string, std::optional<double>> probes;
