@@ -1214,6 +1214,7 @@ void Simulation::step() {
     const bool test = step_ > 0 && !tested && limit2 >= 0.0;  // the rebuild test, each thread over its elements
     if (step_ > 0 && !tested && !test) rebuild();
     displaced_.assign(static_cast<std::size_t>(nt), 0);
+    displaced_now_.assign(static_cast<std::size_t>(nt), 0);
     oversteps_.assign(static_cast<std::size_t>(nt), Overstep{});
     bool index_failed = false;
     const bool timed = balance_steps_ % kClockEvery == 0;  // this step's work measured (balance_if_uneven)
@@ -1222,11 +1223,11 @@ void Simulation::step() {
       if (test) {  // needs_rebuild() split over the threads (an OR of the same per-element tests)
         const Elements& e = m_.elements;
         const std::size_t b = shares_.first[k], end = shares_.first[k + 1];
-        displaced_[k] = any_displaced(e.x.data() + b, e.y.data() + b, x_ref_.data() + b, y_ref_.data() + b, limit2,
-                                      end - b);
+        displaced_now_[k] = any_displaced(e.x.data() + b, e.y.data() + b, x_ref_.data() + b, y_ref_.data() + b,
+                                          limit2, end - b);
         pool.barrier();
-        std::uint8_t any = 0;
-        for (std::uint8_t d : displaced_) any |= d;
+        std::uint8_t any = 0;  // the same on every thread: displaced_now_ is not written again in this job
+        for (std::uint8_t d : displaced_now_) any |= d;
         if (any && !rebuild_on(Team{&pool, t, nt})) {  // new slot lists and shares, for every thread after it
           if (t == 0) index_failed = true;  // too many slots: thrown after the job
           return;

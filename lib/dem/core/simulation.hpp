@@ -16,7 +16,8 @@
 #include "dem/core/thread_shares.hpp"
 #include "dem/core/worker_threads.hpp"
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+// (not under ThreadSanitizer: the clones' resolvers run while the program is loaded, before TSan starts)
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_THREAD__)
 #define DEM2D_CLONES_AVX2 [[gnu::target_clones("avx2", "default")]]
 #else
 #define DEM2D_CLONES_AVX2
@@ -275,6 +276,10 @@ class Simulation {
   } mutable workers_;
   WorkerThreads& workers(int threads) const;  // the pool (started on first use; energies() uses it too)
   std::vector<std::uint8_t> displaced_;  // per thread: an element of its share moved far enough to rebuild
+  // per thread: the same, from a rebuild test made at the start of a step on several threads. Not displaced_:
+  // a thread that has passed the test's barrier goes on to write displaced_ for the next step while a slower
+  // thread may still be reading the test's flags (it then saw "rebuild" alone and waited for ever in it).
+  std::vector<std::uint8_t> displaced_now_;
   std::vector<Overstep> oversteps_;      // per thread: the blow-up test over its share (overstep())
   struct alignas(64) ThreadClock {       // per thread: CPU seconds on its share since the shares were made
     double seconds = 0.0;
