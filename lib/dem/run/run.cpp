@@ -45,7 +45,9 @@ nlohmann::json provenance() {
   gethostname(host, sizeof host - 1);
   const std::time_t now = std::time(nullptr);
   char date[64];
-  std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  std::tm utc{};
+  gmtime_r(&now, &utc);  // not std::gmtime: its one static buffer is shared by the runs of a study (threads)
+  std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", &utc);
   return {{"code_version", DEM2D_VERSION}, {"build_type", DEM2D_BUILD_TYPE}, {"date", date}, {"machine", host},
           {"compiler", compiler()},
           {"libraries", fmt::format("toml++ {}.{}.{}, nlohmann_json {}.{}.{}, fmt {}.{}.{}", TOML_LIB_MAJOR, TOML_LIB_MINOR,
