@@ -29,7 +29,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,6 +39,7 @@
 
 #include "dem/cases/case_file.hpp"
 #include "dem/core/simulation.hpp"
+#include "dem/run/output_files.hpp"
 #include "dem/run/run.hpp"
 
 namespace {
@@ -114,6 +114,8 @@ int main(int argc, char** argv) {
   app.add_option("--min-per-thread", min_per_thread,
                  "elements per thread at least, as dem2d run's (default 4096; tests: 1)")->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
+  std::error_code ec_old;
+  if (!json_path.empty()) std::filesystem::remove(json_path, ec_old);  // never a stale result if this run fails
 
   Side side[2];
   std::int64_t total = 0;
@@ -159,30 +161,30 @@ int main(int argc, char** argv) {
   // would always meet caches warmed by the other).
   using clock = std::chrono::steady_clock;
   try {
-  for (std::int64_t done = 0; done < total;) {
-    const std::int64_t n = std::min<std::int64_t>(block, total - done);
-    const bool last = done + n == total;
-    const int first = static_cast<int>((done / block) % 2);
-    for (int q = 0; q < 2; ++q) {
-      Side& s = side[(first + q) % 2];
-      const auto t0 = clock::now();
-      for (std::int64_t i = 0; i < n; ++i) {
-        if (last && i + 1 == n) s.sim->keep_contact_forces(true);
-        s.sim->step();
+    for (std::int64_t done = 0; done < total;) {
+      const std::int64_t n = std::min<std::int64_t>(block, total - done);
+      const bool last = done + n == total;
+      const int first = static_cast<int>((done / block) % 2);
+      for (int q = 0; q < 2; ++q) {
+        Side& s = side[(first + q) % 2];
+        const auto t0 = clock::now();
+        for (std::int64_t i = 0; i < n; ++i) {
+          if (last && i + 1 == n) s.sim->keep_contact_forces(true);
+          s.sim->step();
+        }
+        const double secs = std::chrono::duration<double>(clock::now() - t0).count();
+        s.seconds += secs;
+        s.block_seconds.push_back(secs);
+        // the blow-up test of dem2d run (its kinematic part), once per block: timings of a run that blew up
+        // mean nothing
+        if (const dem::Simulation::Overstep o = s.sim->overstep(); o.index != dem::Simulation::Overstep::npos) {
+          fmt::print(stderr, "dem2d_alternate: {}: blow-up by step {}: element {} moved {:.4g} of its radius in one step\n",
+                     s.spec, s.sim->steps(), s.sim->id_of(o.index), std::sqrt(o.fraction2));
+          return 3;
+        }
       }
-      const double secs = std::chrono::duration<double>(clock::now() - t0).count();
-      s.seconds += secs;
-      s.block_seconds.push_back(secs);
-      // the blow-up test of dem2d run (its kinematic part), once per block: timings of a run that blew up
-      // mean nothing
-      if (const dem::Simulation::Overstep o = s.sim->overstep(); o.index != dem::Simulation::Overstep::npos) {
-        fmt::print(stderr, "dem2d_alternate: {}: blow-up by step {}: element {} moved {:.4g} of its radius in one step\n",
-                   s.spec, s.sim->steps(), s.sim->id_of(o.index), std::sqrt(o.fraction2));
-        return 3;
-      }
+      done += n;
     }
-    done += n;
-  }
   } catch (const std::exception& e) {  // e.g. too many contact slots for the contact index
     fmt::print(stderr, "dem2d_alternate: {}\n", e.what());
     return 2;
@@ -229,10 +231,10 @@ int main(int argc, char** argv) {
     if (!same) status = 1;
   }
   if (!json_path.empty()) {
-    std::ofstream f(json_path);
-    f << j.dump(2) << '\n';
-    if (!f) {
-      fmt::print(stderr, "dem2d_alternate: cannot write {}\n", json_path);
+    try {
+      dem::write_file_atomic(json_path, j.dump(2) + "\n");  // whole or not at all
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "dem2d_alternate: {}\n", e.what());
       return 2;
     }
   }
