@@ -33,7 +33,7 @@ mkdir -p "$OUT"
 
 DEM2D=$BUILD/app/dem2d
 [ -x "$DEM2D" ] || { echo "bench/run.sh: $DEM2D not found: cmake --build build -j2" >&2; exit 1; }
-command -v "$LMP" > /dev/null || { echo "bench/run.sh: LAMMPS ($LMP) not found: apt-get install -y lammps" >&2; exit 1; }
+command -v "$LMP" > /dev/null || { echo "bench/run.sh: LAMMPS ($LMP) not found: scripts/setup.sh --bench (Debian lammps)" >&2; exit 1; }
 command -v python3 > /dev/null || { echo "bench/run.sh: python3 (3.11+, tomllib) is needed" >&2; exit 1; }
 
 # One core, one thread each: no MPI launcher, no OpenMP threads, no accelerator suffix.

@@ -218,13 +218,15 @@ def main():
     a = ap.parse_args()
     out = a.out or Path(tempfile.mkdtemp(prefix="dem2d-suite."))
     out.mkdir(parents=True, exist_ok=True)
+    if not os.access("/usr/bin/time", os.X_OK):  # GNU time: the peak memory of every run
+        sys.exit("bench/suite.py: /usr/bin/time not found (GNU time, for peak memory): scripts/setup.sh --bench")
     builds = [tuple(s.split("=", 1)) for s in a.dem2d] or [("dem2d", str(ROOT / "build/app/dem2d"))]
     for _, b in builds:
         if not os.access(b, os.X_OK):
             sys.exit(f"bench/suite.py: {b} not found: cmake --build build -j2")
     lmp = shutil.which(a.lmp)
     if not lmp:
-        print(f"bench/suite.py: LAMMPS ({a.lmp}) not found (apt-get install -y lammps): dem2d only", file=sys.stderr)
+        print(f"bench/suite.py: LAMMPS ({a.lmp}) not found (scripts/setup.sh --bench installs it): dem2d only", file=sys.stderr)
     threads_ok = {label: has_threads(b) for label, b in builds}
 
     settle = [] if a.only_pre else SETTLE + ([SETTLE_BIG] if a.big else [])

@@ -3,11 +3,15 @@
 # Package list and CMake targets: docs/toolchain.md.
 set -euo pipefail
 # --mpi: also Open MPI (mpirun, the MPI C++ headers), for -DDEM2D_MPI=ON (docs/cluster.md); or DEM2D_SETUP_MPI=1.
+# --bench: also what the speed benchmark needs (bench/README.md): Debian's LAMMPS (`lmp`), GNU time
+# (/usr/bin/time: peak memory) and perf (where the cycles go); or DEM2D_SETUP_BENCH=1.
 mpi="${DEM2D_SETUP_MPI:-0}"
+bench="${DEM2D_SETUP_BENCH:-0}"
 for arg in "$@"; do
   case "$arg" in
     --mpi) mpi=1 ;;
-    *) echo "setup: unknown option $arg (known: --mpi)" >&2; exit 2 ;;
+    --bench) bench=1 ;;
+    *) echo "setup: unknown option $arg (known: --mpi, --bench)" >&2; exit 2 ;;
   esac
 done
 pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtomlplusplus-dev
@@ -24,6 +28,7 @@ pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtoml
       # llvm-symbolizer (package llvm) for readable stack traces
       clang libclang-rt-dev llvm)
 [ "$mpi" = 1 ] && pkgs+=(openmpi-bin libopenmpi-dev)
+[ "$bench" = 1 ] && pkgs+=(lammps time linux-perf)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

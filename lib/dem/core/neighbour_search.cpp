@@ -25,6 +25,7 @@ bool NeighbourSearch::sort_into_cells(const Elements& e, double skin) {
     ymax = std::max(ymax, e.y[i]);
     rmax = std::max(rmax, e.radius[i]);
   }
+  extent_ = n_active == 0 ? 0.0 : std::max({std::abs(xmin), std::abs(xmax), std::abs(ymin), std::abs(ymax)});
   if (n_active < 2) return false;
   double cell = 2.0 * rmax + skin;
   // Keep the grid at most ~4 cells per element (a sparse cloud would otherwise need a huge grid).

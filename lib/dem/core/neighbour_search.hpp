@@ -24,6 +24,8 @@ class NeighbourSearch {
   /// The first phase: the cell grid and the elements sorted into it. false: fewer than two active
   /// elements (no pairs; collect() must not be called).
   bool sort_into_cells(const Elements& e, double skin);
+  /// The largest |x| or |y| of an active element at the last sort_into_cells (0 if none).
+  double extent() const { return extent_; }
   /// The second phase: appends to `out` the pairs whose first element i lies in [b, end), sorted by (i, j).
   /// Reads only; threads may call it at once on disjoint ranges (each with its own `out`).
   void collect(const Elements& e, double skin, std::uint32_t b, std::uint32_t end,
@@ -33,6 +35,7 @@ class NeighbourSearch {
   std::vector<std::uint32_t> cell_start_, cell_items_, cell_of_;
   std::vector<std::uint32_t> scratch_;
   std::uint32_t nx_ = 0, ny_ = 0;
+  double extent_ = 0.0;
 };
 
 /// The same result by checking every pair: the oracle for tests.

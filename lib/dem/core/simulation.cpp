@@ -213,11 +213,16 @@ inline double advance_dof(double& v, double f, double w, double& d, double& x, d
 /// The blow-up prefilter of one element (may_overstep): bits whose sign bit is clear if (|Δx|/r)² may exceed
 /// the limit, and bits with a set exponent if it is not finite. limit2r = limit2 (1 − 1e-12), so that no
 /// division is needed: (dx² + dy²)/r² > limit2 implies dx² + dy² > limit2r · r² after rounding.
+/// Also the largest squared increment |Δx|² so far, as its bit pattern (max_bits: the travel bound,
+/// Simulation::travel_): for doubles ≥ 0 the patterns, read as integers, order as the values do, and an
+/// integer maximum vectorises where a floating-point one does not. (A NaN d2 is caught by not_finite.)
 inline void overstep_bits(double ddx, double ddy, double r, double limit2r, std::uint64_t& all_below,
-                          std::uint64_t& not_finite) {
+                          std::uint64_t& not_finite, std::int64_t& max_bits) {
   const double d2 = ddx * ddx + ddy * ddy;
   all_below &= std::bit_cast<std::uint64_t>(d2 - limit2r * (r * r));
   not_finite |= std::bit_cast<std::uint64_t>(d2 * 0.0);
+  const std::int64_t bits = std::bit_cast<std::int64_t>(d2);
+  max_bits = bits > max_bits ? bits : max_bits;
 }
 inline bool may_overstep(std::uint64_t all_below, std::uint64_t not_finite) {
   return (all_below >> 63) == 0 || (not_finite & 0x7fffffffffffffffULL) != 0;
@@ -235,14 +240,15 @@ DEM2D_CLONES_AVX2 bool integrate_free(double* __restrict vx, double* __restrict 
                                       double* __restrict dphi, double* __restrict x, double* __restrict y,
                                       double* __restrict phi, const double* __restrict r, double h, double dt,
                                       double limit2r, std::size_t n,
-                                      [[maybe_unused]] const std::uint8_t* __restrict active = nullptr) {
+                                      const std::uint8_t* __restrict active, double& max_d2) {
   std::uint64_t all_below = ~std::uint64_t{0}, not_finite = 0;
+  std::int64_t md = 0;  // the bits of +0.0
   for (std::size_t i = 0; i < n; ++i) {
     if constexpr (!Masked) {
       const double ddx = advance_dof<K19>(vx[i], fx[i], wm[i], dx[i], x[i], h, dt);
       const double ddy = advance_dof<K19>(vy[i], fy[i], wm[i], dy[i], y[i], h, dt);
       advance_dof<K19>(om[i], mom[i], wi[i], dphi[i], phi[i], h, dt);
-      overstep_bits(ddx, ddy, r[i], limit2r, all_below, not_finite);
+      overstep_bits(ddx, ddy, r[i], limit2r, all_below, not_finite, md);
     } else {
       const bool on = active[i] != 0;
       double v[3] = {vx[i], vy[i], om[i]}, d[3] = {dx[i], dy[i], dphi[i]}, q[3] = {x[i], y[i], phi[i]};
@@ -252,9 +258,11 @@ DEM2D_CLONES_AVX2 bool integrate_free(double* __restrict vx, double* __restrict 
       vx[i] = on ? v[0] : vx[i], vy[i] = on ? v[1] : vy[i], om[i] = on ? v[2] : om[i];
       dx[i] = on ? d[0] : dx[i], dy[i] = on ? d[1] : dy[i], dphi[i] = on ? d[2] : dphi[i];
       x[i] = on ? q[0] : x[i], y[i] = on ? q[1] : y[i], phi[i] = on ? q[2] : phi[i];
-      overstep_bits(dx[i], dy[i], r[i], limit2r, all_below, not_finite);
+      // (the increments of removed elements are old: they move no more, and count in no maximum)
+      overstep_bits(on ? dx[i] : 0.0, on ? dy[i] : 0.0, r[i], limit2r, all_below, not_finite, md);
     }
   }
+  max_d2 = std::bit_cast<double>(md);
   return may_overstep(all_below, not_finite);
 }
 /// Whether an element moved by at least √limit2 from its reference position: d² − limit2 ≥ 0 has a clear
@@ -271,9 +279,11 @@ bool any_displaced(const double* __restrict x, const double* __restrict y, const
 /// Whether (|Δx|/r)² may exceed limit2 for some element of [0, n): overstep_bits over the increments,
 /// without branches or comparisons, which the compiler vectorises.
 bool may_overstep(const double* __restrict dx, const double* __restrict dy, const double* __restrict r,
-                  double limit2r, std::size_t n) {
+                  double limit2r, std::size_t n, double& max_d2) {
   std::uint64_t all_below = ~std::uint64_t{0}, not_finite = 0;
-  for (std::size_t i = 0; i < n; ++i) overstep_bits(dx[i], dy[i], r[i], limit2r, all_below, not_finite);
+  std::int64_t md = 0;  // the bits of +0.0
+  for (std::size_t i = 0; i < n; ++i) overstep_bits(dx[i], dy[i], r[i], limit2r, all_below, not_finite, md);
+  max_d2 = std::bit_cast<double>(md);
   return may_overstep(all_below, not_finite);
 }
 /// The first NaN, else the first largest (the order in which oversteps of successive ranges combine).
@@ -465,6 +475,7 @@ bool Simulation::rebuild_on(const Team& team) {
     if (rebuild_parts_.size() < nn) rebuild_parts_.resize(nn);
     x_ref_.resize(n);
     y_ref_.resize(n);
+    travel_ = 0.0;  // the reference positions are the positions now (copied below)
   }
   team.sync();
   {  // element–element and element–wall candidates of this thread's elements, in (i, j) order
@@ -1106,13 +1117,18 @@ double Simulation::velocity_dt() const {
 }
 
 Simulation::Overstep Simulation::integrate_range(std::size_t b, std::size_t end, double dt_v, Freedom freedom,
-                                                 double limit2, double limit2_next, std::uint8_t& displaced) {
+                                                 double limit2, double limit2_next, RangeTests& tests) {
   Elements& e = m_.elements;
   const double dt = m_.numerics.dt;
   const bool k19 = m_.numerics.integrator == Integrator::k19;
   if (limit2_next >= 0.0) {  // right after the integration, while the positions are in the caches
-    const Overstep o = integrate_range(b, end, dt_v, freedom, limit2, -1.0, displaced);
-    displaced = any_displaced(e.x.data() + b, e.y.data() + b, x_ref_.data() + b, y_ref_.data() + b, limit2_next, end - b);
+    const Overstep o = integrate_range(b, end, dt_v, freedom, limit2, -1.0, tests);
+    // No element of the range can have moved √limit2_next from its reference position if the travel bound
+    // of the steps before plus this step's largest increment stays below it: the exact test would say no,
+    // so it is not made (travel_ in simulation.hpp). Otherwise (or if the bound is unknown: ∞) it is.
+    tests.skipped = travel_ + std::sqrt(tests.max_d2) < kTravelMargin * std::sqrt(limit2_next);
+    tests.displaced = tests.skipped ? 0 : any_displaced(e.x.data() + b, e.y.data() + b, x_ref_.data() + b,
+                                                        y_ref_.data() + b, limit2_next, end - b);
     return o;
   }
   if (freedom != Freedom::general) {
@@ -1122,7 +1138,7 @@ Simulation::Overstep Simulation::integrate_range(std::size_t b, std::size_t end,
     const bool may = all(e.vx.data() + b, e.vy.data() + b, e.omega.data() + b, e.fx.data() + b, e.fy.data() + b,
                          e.moment.data() + b, e.inv_mass.data() + b, e.inv_inertia.data() + b, e.dx.data() + b,
                          e.dy.data() + b, e.dphi.data() + b, e.x.data() + b, e.y.data() + b, e.phi.data() + b,
-                         e.radius.data() + b, dt_v, dt, prefilter_limit(limit2), end - b, e.active.data() + b);
+                         e.radius.data() + b, dt_v, dt, prefilter_limit(limit2), end - b, e.active.data() + b, tests.max_d2);
     return may ? find_overstep(e, b, end, limit2) : Overstep{};
   }
   for (std::size_t i = b; i < end; ++i) {
@@ -1157,7 +1173,7 @@ Simulation::Overstep Simulation::integrate_range(std::size_t b, std::size_t end,
     e.y[i] += e.dy[i];
     e.phi[i] += e.dphi[i];
   }
-  const bool may = may_overstep(e.dx.data() + b, e.dy.data() + b, e.radius.data() + b, prefilter_limit(limit2), end - b);
+  const bool may = may_overstep(e.dx.data() + b, e.dy.data() + b, e.radius.data() + b, prefilter_limit(limit2), end - b, tests.max_d2);
   return may ? find_overstep(e, b, end, limit2) : Overstep{};
 }
 
@@ -1204,8 +1220,9 @@ void Simulation::step() {
     std::fill(e.moment.begin(), e.moment.end(), 0.0);
     sweep_scatter(inv_dt);
     if (!plate) {
-      displaced_.assign(1, 0);
-      oversteps_.assign(1, integrate_range(0, n, dt_v, freedom(0, n), limit2_step, limit2_next, displaced_[0]));
+      range_tests_.assign(1, RangeTests{});
+      oversteps_.assign(1, integrate_range(0, n, dt_v, freedom(0, n), limit2_step, limit2_next, range_tests_[0]));
+      displaced_.assign(1, range_tests_[0].displaced);
     }
   } else {  // the same sums, shared as thread_shares.hpp says
     if (shares_.threads != nt) share_work(nt);
@@ -1215,6 +1232,7 @@ void Simulation::step() {
     if (step_ > 0 && !tested && !test) rebuild();
     displaced_.assign(static_cast<std::size_t>(nt), 0);
     displaced_now_.assign(static_cast<std::size_t>(nt), 0);
+    range_tests_.assign(static_cast<std::size_t>(nt), RangeTests{});
     oversteps_.assign(static_cast<std::size_t>(nt), Overstep{});
     bool index_failed = false;
     const bool timed = balance_steps_ % kClockEvery == 0;  // this step's work measured (balance_if_uneven)
@@ -1244,20 +1262,21 @@ void Simulation::step() {
       const std::size_t b = shares_.first[k], end = shares_.first[k + 1];
       const std::size_t mid = plate ? end : std::max<std::size_t>(b, shares_.private_from[k]);
       Overstep late;
-      std::uint8_t displaced_late = 0;
-      if (mid < end)
-        late = integrate_range(mid, end, dt_v, freedom(mid, end), limit2_step, limit2_next, displaced_late);
+      RangeTests tests_late;
+      if (mid < end) late = integrate_range(mid, end, dt_v, freedom(mid, end), limit2_step, limit2_next, tests_late);
       const double c1 = timed ? thread_seconds() : 0.0;
       pool.wait_earlier(t);  // their sweeps no longer read the shared elements, and their slots are complete
       const double c2 = timed ? thread_seconds() : 0.0;
       gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
       if (!plate) {
         Overstep first;  // over the shares in element order (overstep())
-        displaced_[k] = 0;
-        if (b < mid) first = integrate_range(b, mid, dt_v, freedom(b, mid), limit2_step, limit2_next, displaced_[k]);
+        RangeTests tests_first;
+        if (b < mid) first = integrate_range(b, mid, dt_v, freedom(b, mid), limit2_step, limit2_next, tests_first);
         take_worse(first, late);
         oversteps_[k] = first;
-        displaced_[k] |= displaced_late;
+        displaced_[k] = tests_first.displaced | tests_late.displaced;
+        range_tests_[k] = {0, static_cast<std::uint8_t>(tests_first.skipped + tests_late.skipped),
+                           std::max(tests_first.max_d2, tests_late.max_d2)};
       }
       if (timed) busy_[k].seconds += (c1 - c0) + (thread_seconds() - c2);
     };
@@ -1268,19 +1287,31 @@ void Simulation::step() {
   }
   sum_wall_forces();
   if (plate) {
+    travel_ = kTravelUnknown;  // (the next step tests by itself)
     advance_base_plate();
-    std::uint8_t unused = 0;
+    RangeTests unused;
     if (nt == 1) {
       oversteps_.assign(1, integrate_range(0, n, dt_v, freedom(0, n), limit2_step, -1.0, unused));
     } else {
       oversteps_.assign(static_cast<std::size_t>(nt), Overstep{});
       auto body = [&](int t) {
         const std::size_t k = static_cast<std::size_t>(t);
-        std::uint8_t none = 0;
+        RangeTests none;
         oversteps_[k] = integrate_range(shares_.first[k], shares_.first[k + 1], dt_v, freedom(shares_.first[k], shares_.first[k + 1]), limit2_step, -1.0, none);
       };
       workers(nt).run(body);
     }
+  } else {  // every element moved by at most the largest increment of the step's ranges
+    double most = 0.0;
+    for (const RangeTests& r : range_tests_) {
+      most = r.max_d2 > most ? r.max_d2 : most;
+      rebuild_tests_skipped_ += r.skipped;
+    }
+    // x += Δx rounds each coordinate by up to half an ulp, ≤ 2⁻⁵³ |x|: the position moved by at most
+    // |Δx| + 2⁻⁵²·max(|x|, |y|), and no active element's coordinate exceeds the extent at the last
+    // rebuild plus its travel since.
+    const double step = std::sqrt(most);
+    travel_ += step + kRoundoff * (search_.extent() + travel_ + step);
   }
   move_walls();
   if (limit2_next >= 0.0) tested_step_ = step_ + 1;

@@ -3,6 +3,7 @@
 // pseudo-rectangle elements: contact forces from the increments of the step (K5–K15, M3–M12),
 // velocities (K17), next increments (K18 or K19), positions.
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -75,6 +76,7 @@ class Simulation {
   const Model& model() const { return m_; }
   Model& model() {  // whoever may change the model: the next step makes its own rebuild test
     tested_step_ = -1;
+    travel_ = kTravelUnknown;
     return m_;
   }
   double time() const { return time_; }
@@ -126,6 +128,8 @@ class Simulation {
   StabilityBound stability_bound() const;
   double stability_limit() const;
   std::int64_t rebuilds() const { return rebuilds_; }
+  /// Rebuild tests over an element range that the travel bound showed needless (travel_ below; statistics).
+  std::int64_t rebuild_tests_skipped() const { return rebuild_tests_skipped_; }
   /// The base plate's displacement and travel δ_B since the start (base_friction.hpp).
   const BasePlateTravel& plate_travel() const { return plate_travel_; }
 
@@ -226,10 +230,17 @@ class Simulation {
   enum class Freedom : std::uint8_t { general, active_free, all_free };
   Freedom freedom(std::size_t b, std::size_t e) const;
   double velocity_dt() const;  // the step of (K17): Δt, or Δt/2 at a staggered start
-  // (K17–K19) over elements [b, e), then the blow-up test over them (overstep())
-  // and, if limit2_next >= 0, the next step's rebuild test over them (displaced: any_displaced)
+  // What integrate_range found over its range for the next step's rebuild test: displaced (any_displaced,
+  // unless the travel bound showed it needless: skipped), and the largest squared increment |Δx|² of an
+  // active element (travel_).
+  struct RangeTests {
+    std::uint8_t displaced = 0, skipped = 0;
+    double max_d2 = 0.0;
+  };
+  // (K17–K19) over elements [b, e), then the blow-up test over them (overstep()) and, if limit2_next >= 0,
+  // the next step's rebuild test over them (tests).
   Overstep integrate_range(std::size_t b, std::size_t e, double dt_v, Freedom freedom, double limit2,
-                           double limit2_next, std::uint8_t& displaced);
+                           double limit2_next, RangeTests& tests);
   // The rebuild limit of the next step if it is known now (static walls, no base plate), else −1.
   double next_rebuild_limit2() const;
   // The step whose rebuild test the last integration made (displaced_); −1: none. Anything that may
@@ -293,6 +304,20 @@ class Simulation {
   int threads_ = 1;
   std::size_t min_per_thread_ = 4096;
   std::vector<double> x_ref_, y_ref_;  // positions at the last rebuild
+  // The travel bound: no element is farther than travel_ from its reference position (x_ref_, y_ref_): the
+  // sum over the steps since the last rebuild of the step's largest increment |Δx| plus the rounding of
+  // x += Δx (kRoundoff times the largest coordinate; triangle inequality). The rebuild test made right after
+  // an integration (static walls, no base plate) is skipped while travel_ plus the step's largest increment
+  // stays below kTravelMargin √limit2: the exact test could only say "no", so when rebuilds happen, and every
+  // result, is unchanged (the margin covers the relative rounding of the sums and of the test). ∞: unknown
+  // (a restored state, a reordering, a model changed from outside such as disks removed at an outlet, the
+  // base plate's second pass), the exact test every step until the next rebuild.
+  static constexpr double kTravelUnknown = std::numeric_limits<double>::infinity();
+  static constexpr double kTravelMargin = 0.9;
+  static constexpr double kRoundoff = 0x1p-52;
+  double travel_ = kTravelUnknown;
+  std::vector<RangeTests> range_tests_;  // per thread: its ranges' tests in this step (displaced_ aside)
+  std::int64_t rebuild_tests_skipped_ = 0;
   std::vector<Vec2> wall_ref_;
   double skin_ = 0.0;
   double time_ = 0.0;

@@ -178,6 +178,7 @@ void Simulation::apply_order() {
   for (std::size_t k = 0; k < e.size(); ++k) index_of_id_[e.id[k]] = static_cast<std::uint32_t>(k);
   shares_.forget_rates();  // measured on index ranges that now hold other elements
   tested_step_ = -1;       // the rebuild test was made on the old order
+  travel_ = kTravelUnknown;  // x_ref_ is not permuted: unknown until the rebuild (or the checkpoint's)
 }
 
 void Simulation::restore_order(const std::vector<std::uint32_t>& ids) {

@@ -217,6 +217,7 @@ struct SimulationAccess {
     sim.skin_ = r.get<double>(), sim.time_ = r.get<double>(), sim.step_ = r.get<std::int64_t>();
     sim.rebuilds_ = r.get<std::int64_t>(), sim.preloading_ = r.get<bool>();
     sim.tested_step_ = -1;  // the next step makes its own rebuild test
+    sim.travel_ = Simulation::kTravelUnknown;  // not saved: the exact rebuild test until the next rebuild
     sim.forces_step_ = sim.step_;  // the contact resultants were saved with the step (write_state)
     if (r.pos != r.in.size()) throw OutputError(fmt::format("{}: corrupt checkpoint (trailing state bytes)", ck.case_path));
     sim.index_contacts();  // derived from the slot lists, not saved
