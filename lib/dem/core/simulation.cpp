@@ -1219,6 +1219,7 @@ void Simulation::step() {
     weight(e.fx.data(), e.fy.data(), e.mass.data(), m_.gravity, n);  // (K15): gravity
     std::fill(e.moment.begin(), e.moment.end(), 0.0);
     sweep_scatter(inv_dt);
+    sum_wall_forces();
     if (!plate) {
       range_tests_.assign(1, RangeTests{});
       oversteps_.assign(1, integrate_range(0, n, dt_v, freedom(0, n), limit2_step, limit2_next, range_tests_[0]));
@@ -1278,6 +1279,9 @@ void Simulation::step() {
         range_tests_[k] = {0, static_cast<std::uint8_t>(tests_first.skipped + tests_late.skipped),
                            std::max(tests_first.max_d2, tests_late.max_d2)};
       }
+      // the walls' forces from the wall slots (in slot order, as on one thread), by the last thread: it has
+      // waited for every other thread's sweep, and it usually finishes before thread 0
+      if (t == nt - 1) sum_wall_forces();
       if (timed) busy_[k].seconds += (c1 - c0) + (thread_seconds() - c2);
     };
     pool.run(body);
@@ -1285,7 +1289,6 @@ void Simulation::step() {
       ContactIndex::check(linear_pairs_.size(), face_pairs_.size() + linear_walls_.size() + face_walls_.size());
     balance_if_uneven();  // the next step's shares (results do not depend on them)
   }
-  sum_wall_forces();
   if (plate) {
     travel_ = kTravelUnknown;  // (the next step tests by itself)
     advance_base_plate();
