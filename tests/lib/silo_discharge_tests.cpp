@@ -174,6 +174,15 @@ TEST_CASE("A closed-gate state started as a discharge drops the gate's contacts 
   const auto s = summary(b);
   CHECK(s["discharge"]["discharged"] == 1);
   CHECK(s["discharge"]["remaining"] == 1);
+  // on two threads (a disk each) the same, bit for bit: the contact index and the threads' shares of the
+  // wall slots are made after the gate's slots are dropped (made before, the sweep read the dropped slots)
+  dem::RunOptions ob2 = ob;
+  ob2.threads = 2;
+  ob2.min_per_thread = 1;
+  const auto b2 = test::fresh_dir("dem2d_unit_discharge", "opened_2threads");
+  REQUIRE(run(open, b2, ob2).status == "completed");
+  CHECK(summary(b2)["discharge"]["discharged"] == 1);
+  CHECK(table(b2 / "series.csv") == table(b / "series.csv"));
   // the same state into the closed case again (same walls): the disk still rests on the gate
   const auto c = test::fresh_dir("dem2d_unit_discharge", "still_closed");
   const dem::Case closed_longer =

@@ -1,5 +1,5 @@
 #pragma once
-// Which contact slots act on each element, in the order their forces are summed (docs/model.md §1,
+// Which contact slots act on each element, in the order their forces are summed (lib/README.md,
 // "Determinism"). A step first computes every slot's force into the slot (any order, any thread), then
 // every element sums its slots in this fixed order: the linear pairs by ascending slot (= ascending
 // partner index, since slots are sorted by (i, j)), then the face pairs, the linear wall slots and the

@@ -1,5 +1,5 @@
 #pragma once
-// How a step on several threads shares its work ("owner computes"; docs/model.md §1, "Determinism").
+// How a step on several threads shares its work ("owner computes"; lib/README.md, "Determinism").
 // Thread t owns the elements [first[t], first[t+1]) and computes the contact slots whose element i it
 // owns: since every slot list is sorted by (i, j), a contiguous run of each list. A slot adds its forces
 // at once to each of its elements that is *private* — an element all of whose slots its owner computes —
@@ -117,8 +117,8 @@ struct ThreadShares {
     previous.assign(first.begin(), first.end());
     first.assign(n + 1, 0);
     first[n] = static_cast<std::uint32_t>(elements);
-    const std::size_t m = rate.size();  // the rated ranges (of the boundaries the rates were measured on)
-    const bool rated = m > 0 && rate_first.size() == m + 1 && rate_first[m] == elements;
+    const std::size_t m = n;  // the rated ranges: the boundaries the rates were measured on, one per thread
+    const bool rated = rate.size() == m && rate_first.size() == m + 1 && rate_first[m] == elements;
     if (!rated) {
       const std::uint64_t total = prefix[elements];
       for (std::size_t t = 1; t < n; ++t) {
@@ -127,8 +127,8 @@ struct ThreadShares {
       }
       return;
     }
-    // the weighted estimate of the elements [0, e): below[r] + rate[r]·(prefix[e] − prefix[rate_first[r]]) in
-    // the rated range r that holds e; nondecreasing in e (and continuous at the ranges' boundaries)
+    // the weighted estimate of the elements [0, e): below[q] + rate[q]·(prefix[e] − prefix[rate_first[q]]) in
+    // the rated range q that holds e; nondecreasing in e (and continuous at the ranges' boundaries)
     below.assign(m + 1, 0.0);
     for (std::size_t q = 0; q < m; ++q)
       below[q + 1] = below[q] + rate[q] * static_cast<double>(prefix[rate_first[q + 1]] - prefix[rate_first[q]]);

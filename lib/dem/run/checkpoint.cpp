@@ -220,9 +220,14 @@ struct SimulationAccess {
     sim.travel_ = Simulation::kTravelUnknown;  // not saved: the exact rebuild test until the next rebuild
     sim.forces_step_ = sim.step_;  // the contact resultants were saved with the step (write_state)
     if (r.pos != r.in.size()) throw OutputError(fmt::format("{}: corrupt checkpoint (trailing state bytes)", ck.case_path));
-    sim.index_contacts();  // derived from the slot lists, not saved
-    if (!other_case) return;
-    // Another case: each slot takes the new case's law of its material pair, of the same kind.
+    if (other_case) start_other_case(sim);
+    // derived from the slot lists (not saved): made once they are final, since another case may drop wall
+    // slots (the sweep's shares and the contact index would otherwise still count them)
+    sim.index_contacts();
+  }
+  // Another case: each slot takes the new case's law of its material pair, of the same kind.
+  static void start_other_case(Simulation& sim) {
+    const Elements& e = sim.m_.elements;
     const Model& m = sim.m_;
     // A wall the new case opens (a silo's slit in discharge) has no contacts: they are dropped.
     auto drop_open = [&](auto& slots) {
