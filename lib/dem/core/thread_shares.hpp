@@ -117,8 +117,7 @@ struct ThreadShares {
     previous.assign(first.begin(), first.end());
     first.assign(n + 1, 0);
     first[n] = static_cast<std::uint32_t>(elements);
-    const std::size_t m = n;  // the rated ranges: the boundaries the rates were measured on, one per thread
-    const bool rated = rate.size() == m && rate_first.size() == m + 1 && rate_first[m] == elements;
+    const bool rated = rate.size() == n && rate_first.size() == n + 1 && rate_first[n] == elements;
     if (!rated) {
       const std::uint64_t total = prefix[elements];
       for (std::size_t t = 1; t < n; ++t) {
@@ -129,14 +128,14 @@ struct ThreadShares {
     }
     // the weighted estimate of the elements [0, e): below[q] + rate[q]·(prefix[e] − prefix[rate_first[q]]) in
     // the rated range q that holds e; nondecreasing in e (and continuous at the ranges' boundaries)
-    below.assign(m + 1, 0.0);
-    for (std::size_t q = 0; q < m; ++q)
+    below.assign(n + 1, 0.0);
+    for (std::size_t q = 0; q < n; ++q)
       below[q + 1] = below[q] + rate[q] * static_cast<double>(prefix[rate_first[q + 1]] - prefix[rate_first[q]]);
-    const double total = below[m];
+    const double total = below[n];
     std::size_t q = 0;
     for (std::size_t t = 1; t < n; ++t) {
       const double target = total * static_cast<double>(t) / static_cast<double>(n);
-      while (q + 1 < m && below[q + 1] <= target) ++q;  // the range where the estimate passes the target
+      while (q + 1 < n && below[q + 1] <= target) ++q;  // the range where the estimate passes the target
       const auto lo = prefix.begin() + rate_first[q], hi = prefix.begin() + rate_first[q + 1] + 1;
       const std::uint64_t base = prefix[rate_first[q]];
       const auto past = std::partition_point(lo, hi, [&](std::uint64_t p) {
