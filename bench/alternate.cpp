@@ -37,6 +37,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "block_ratios.hpp"
 #include "dem/cases/case_file.hpp"
 #include "dem/core/simulation.hpp"
 #include "dem/run/output_files.hpp"
@@ -71,13 +72,6 @@ bool parse_spec(Side& s, std::string& error) {
   return true;
 }
 
-double quantile(std::vector<double> v, double q) {  // linear between order statistics
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(pos));
-  const std::size_t hi = std::min(lo + 1, v.size() - 1);
-  return v[lo] + (v[hi] - v[lo]) * (pos - static_cast<double>(lo));
-}
 
 bool same_state(const dem::Simulation& a, const dem::Simulation& b) {
   const dem::Elements& x = a.model().elements;
@@ -194,18 +188,13 @@ int main(int argc, char** argv) {
     s.elements = 0;
     for (auto a : s.sim->model().elements.active) s.elements += a;
   }
-  // ratio time of A / time of B per block pair (the same steps), without the first pair unless it is the only
-  // one (warm-up: a pool of threads starts, the caches fill)
-  std::vector<double> ratios;
-  const std::size_t pairs = side[0].block_seconds.size();
-  for (std::size_t p = pairs > 1 ? 1 : 0; p < pairs; ++p)
-    ratios.push_back(side[0].block_seconds[p] / side[1].block_seconds[p]);
-  const double median = quantile(ratios, 0.5), q1 = quantile(ratios, 0.25), q3 = quantile(ratios, 0.75);
+  const bench::BlockRatios br = bench::block_ratios(side[0].block_seconds, side[1].block_seconds);
+  const double median = br.median, q1 = br.q1, q3 = br.q3;
   const double total_ratio = side[0].seconds / side[1].seconds;
   nlohmann::json j;
   j["block"] = block;
   j["steps"] = total;
-  j["pairs"] = ratios.size();
+  j["pairs"] = br.pairs;
   for (int k = 0; k < 2; ++k) {
     const Side& s = side[k];
     j[k == 0 ? "a" : "b"] = {{"run", s.spec},
@@ -222,7 +211,7 @@ int main(int argc, char** argv) {
   fmt::print("B  {}: {:.2f} M element-steps/s ({} elements, {:.3f} s)\n", side[1].spec,
              j["b"]["element_steps_per_second"].get<double>() / 1e6, side[1].elements, side[1].seconds);
   fmt::print("speed B / A over {} pairs of {}-step blocks: median {:.3f} (quartiles {:.3f} … {:.3f}); of the totals {:.3f}\n",
-             ratios.size(), block, median, q1, q3, total_ratio);
+             br.pairs, block, median, q1, q3, total_ratio);
   int status = 0;
   if (same_case) {
     const bool same = same_state(*side[0].sim, *side[1].sim);

@@ -1,0 +1,166 @@
+// dem2d_ceiling: how much faster two threads can make a step on this machine at all: the 2-thread / 1-thread
+// speed ratio of a step that divides perfectly, measured as dem2d_alternate measures dem2d's, in the same
+// minutes if run next to it (bench/README.md, "The two-thread ceiling of the machine").
+//
+//   dem2d_ceiling [--elements 100000] [--read 1] [--write 1] [--flops 40] [--steps 4000] [--block 50]
+//                 [--threads 2] [--json FILE]
+//
+// A step here is a dem2d step without anything that could keep two threads from twice one: no serial part,
+// no uneven shares, no data that two threads share, no rebuild. Each element has `read` arrays that the step
+// only reads and `write` arrays that it reads and writes (doubles, one array per field, as dem2d's elements);
+// the step sums the element's fields, applies `flops` dependent multiply-adds to the sum, and updates its
+// written fields. The default is arithmetic on little memory (1.6 MB), about 6 ns per element and step on the
+// benchmark machine: a step of 10^5 elements lasts about as long as one of the 10^5-disk settle on one thread.
+// Larger --read/--write make it a memory stream instead.
+// Two sides, each with its own arrays, run interleaved block by block in one process: A on one thread, B on
+// `threads` threads of dem2d's own pool (dem::WorkerThreads, one job per step, as Simulation::step). Printed:
+// the speed ratio B / A per pair of blocks (median, quartiles) and of the totals. Both sides must end with the
+// same arrays bit for bit (exit 1 otherwise).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "block_ratios.hpp"
+#include "dem/core/worker_threads.hpp"
+#include "dem/run/output_files.hpp"
+#include "dem/run/run.hpp"
+
+namespace {
+
+struct Side {
+  int threads = 1;
+  std::vector<double> data;  // (read + write) arrays of n doubles, one after the other
+  double seconds = 0.0;
+  std::vector<double> block_seconds;
+};
+
+struct Shape {
+  std::size_t n = 0, read = 0, write = 0, flops = 0;
+};
+
+// The step over elements [b, e): each element reads its fields, and writes its written ones; in tiles of
+// 512 elements, field by field within a tile (loops the compiler vectorises, as dem2d's integration).
+// Not inlined: both sides must run the same machine code. Inlined into its two call sites, g++ compiled them
+// differently, and the ratio of the default step read 2.7-3.0 instead of 2.0 (measured).
+[[gnu::noinline]] void step_range(const Shape& s, double* __restrict d, std::size_t b, std::size_t e) {
+  constexpr std::size_t kTile = 512;
+  double sum[kTile];
+  const std::size_t n = s.n;
+  for (std::size_t t0 = b; t0 < e; t0 += kTile) {
+    const std::size_t m = std::min(kTile, e - t0);
+    for (std::size_t i = 0; i < m; ++i) sum[i] = 0.0;
+    for (std::size_t a = 0; a < s.read; ++a) {
+      const double* __restrict f = d + a * n + t0;
+      for (std::size_t i = 0; i < m; ++i) sum[i] += f[i];
+    }
+    for (std::size_t k = 0; k < s.flops; ++k)
+      for (std::size_t i = 0; i < m; ++i) sum[i] = sum[i] * 0.999999 + 1e-9;
+    for (std::size_t a = s.read; a < s.read + s.write; ++a) {
+      double* __restrict f = d + a * n + t0;
+      for (std::size_t i = 0; i < m; ++i) f[i] = 0.5 * f[i] + 1e-7 * sum[i];
+    }
+  }
+}
+
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"dem2d_ceiling: the 2-thread / 1-thread speed ratio of a perfectly divisible step on this machine"};
+  long elements = 100000, read = 1, write = 1, flops = 40, steps = 4000, block = 50;
+  int threads = 2;
+  std::string json_path;
+  app.add_option("--elements", elements, "elements (default 100000)")->check(CLI::Range(1L, 100000000L));
+  app.add_option("--read", read, "arrays a step only reads (default 1)")->check(CLI::Range(0L, 1000L));
+  app.add_option("--write", write, "arrays a step reads and writes (default 1)")->check(CLI::Range(1L, 1000L));
+  app.add_option("--flops", flops, "dependent multiply-adds per element and step (default 40)")
+      ->check(CLI::Range(0L, 100000L));
+  app.add_option("--steps", steps, "steps of each side (default 4000)")->check(CLI::Range(1L, 1000000000L));
+  app.add_option("--block", block, "steps per block (default 50)")->check(CLI::Range(1L, 1000000L));
+  app.add_option("--threads", threads, "threads of side B (default 2; 1: both sides alike, a check of the method)")->check(CLI::Range(1, 1024));
+  app.add_option("--json", json_path, "also write the result as JSON to this file");
+  CLI11_PARSE(app, argc, argv);
+  std::error_code ec_old;
+  if (!json_path.empty()) std::filesystem::remove(json_path, ec_old);  // never a stale result if this run fails
+
+  const Shape shape{static_cast<std::size_t>(elements), static_cast<std::size_t>(read),
+                    static_cast<std::size_t>(write), static_cast<std::size_t>(flops)};
+  const std::size_t arrays = shape.read + shape.write;
+  Side side[2];
+  side[1].threads = threads;
+  for (Side& s : side) {
+    s.data.resize(arrays * shape.n);
+    for (std::size_t k = 0; k < s.data.size(); ++k) s.data[k] = 1.0 + 1e-6 * static_cast<double>(k % 9973);
+  }
+  dem::WorkerThreads pool(threads);
+
+  using clock = std::chrono::steady_clock;
+  for (long done = 0; done < steps;) {
+    const long n = std::min(block, steps - done);
+    const int first = static_cast<int>((done / block) % 2);  // which side starts alternates from pair to pair
+    for (int q = 0; q < 2; ++q) {
+      Side& s = side[(first + q) % 2];
+      double* d = s.data.data();
+      const auto t0 = clock::now();
+      for (long i = 0; i < n; ++i) {
+        if (s.threads == 1) {
+          step_range(shape, d, 0, shape.n);
+        } else {
+          auto body = [&](int t) {
+            const std::size_t nt = static_cast<std::size_t>(s.threads), k = static_cast<std::size_t>(t);
+            step_range(shape, d, shape.n * k / nt, shape.n * (k + 1) / nt);
+          };
+          pool.run(body);
+        }
+      }
+      const double secs = std::chrono::duration<double>(clock::now() - t0).count();
+      s.seconds += secs;
+      s.block_seconds.push_back(secs);
+    }
+    done += n;
+  }
+
+  const bench::BlockRatios br = bench::block_ratios(side[0].block_seconds, side[1].block_seconds);
+  const double median = br.median, q1 = br.q1, q3 = br.q3;
+  const double total_ratio = side[0].seconds / side[1].seconds;
+  const double mb = 8.0 * static_cast<double>(arrays * shape.n) / 1e6;
+  const bool same = std::memcmp(side[0].data.data(), side[1].data.data(), side[0].data.size() * sizeof(double)) == 0;
+  fmt::print("{} elements x {} arrays ({:.1f} MB per side, {} read, {} written), {} flops per element, {} steps\n",
+             shape.n, arrays, mb, shape.read, shape.write, shape.flops, steps);
+  fmt::print("A  1 thread : {:.1f} us per step\n", 1e6 * side[0].seconds / static_cast<double>(steps));
+  fmt::print("B  {} threads: {:.1f} us per step\n", threads, 1e6 * side[1].seconds / static_cast<double>(steps));
+  fmt::print("speed B / A over {} pairs of {}-step blocks: median {:.3f} (quartiles {:.3f} … {:.3f}); of the totals {:.3f}\n",
+             br.pairs, block, median, q1, q3, total_ratio);
+  fmt::print("final arrays {}\n", same ? "identical bit for bit" : "DIFFER");
+  if (!json_path.empty()) {
+    nlohmann::json j;
+    j["elements"] = shape.n;
+    j["read"] = shape.read;
+    j["write"] = shape.write;
+    j["flops"] = shape.flops;
+    j["megabytes_per_side"] = mb;
+    j["steps"] = steps;
+    j["block"] = block;
+    j["threads"] = threads;
+    j["pairs"] = br.pairs;
+    j["us_per_step"] = {{"a", 1e6 * side[0].seconds / static_cast<double>(steps)},
+                        {"b", 1e6 * side[1].seconds / static_cast<double>(steps)}};
+    j["speed_ratio_b_over_a"] = {{"median", median}, {"q1", q1}, {"q3", q3}, {"of_totals", total_ratio}};
+    j["final_arrays_identical"] = same;
+    j["provenance"] = dem::provenance();
+    try {
+      dem::write_file_atomic(json_path, j.dump(2) + "\n");  // whole or not at all
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "dem2d_ceiling: {}\n", e.what());
+      return 2;
+    }
+  }
+  return same ? 0 : 1;
+}
