@@ -72,7 +72,6 @@ bool parse_spec(Side& s, std::string& error) {
   return true;
 }
 
-
 bool same_state(const dem::Simulation& a, const dem::Simulation& b) {
   const dem::Elements& x = a.model().elements;
   const dem::Elements& y = b.model().elements;

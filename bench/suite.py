@@ -21,8 +21,8 @@ Every run repeats --reps times (default 3), all codes interleaved, in an order r
 run of each counts (other load only slows a run down); peak memory is the smallest maximum resident set size of
 the runs (/usr/bin/time). The ratios within dem2d (2 threads / 1 thread from 10^4 disks, PRE N = 2 ... 5 / N = 1)
 are also measured interleaved block by block in one process (build/bench/dem2d_alternate, --alternate PATH),
-and each 2-thread ratio right after it for a step of as many elements that divides perfectly
-(build/bench/dem2d_ceiling, --ceiling PATH): what two threads of this machine gave any step in those minutes.
+and each 2-thread ratio right after it for a step that divides perfectly, of as many elements and as long as
+dem2d's one-thread step (build/bench/dem2d_divisible, --divisible PATH): a reference for the same minutes.
 --dem2d LABEL=PATH (repeatable) compares several dem2d builds, e.g. before=/tmp/dem2d_main after=build/app/dem2d;
 a build without --threads is run without it (one thread).
 
@@ -190,31 +190,34 @@ def run_alternated(a, cases, out, sizes):
     if "N1" in pre:
         pairs += [(str(pre["N1"]), str(pre[f"N{n}"]), "PRE lattice N = 1", f"N = {n}") for n in range(2, 6)
                   if f"N{n}" in pre]
-    # Next to each 2-thread ratio, in the same minutes: dem2d_ceiling's, a step as long that divides perfectly
-    # (as many elements, arithmetic on little memory): what two threads of this machine gave any step then.
-    ceiling = Path(a.ceiling)
-    if not os.access(ceiling, os.X_OK):
-        print(f"bench/suite.py: {ceiling} not found (cmake --build build --target dem2d_ceiling): no ceiling",
-              file=sys.stderr)
+    # Next to each 2-thread ratio, in the same minutes: dem2d_divisible's, for a step that divides perfectly
+    # (arithmetic on little memory), of as many elements and as long as that run's one-thread step.
+    divisible = Path(a.divisible)
+    if not os.access(divisible, os.X_OK):
+        print(f"bench/suite.py: {divisible} not found (cmake --build build --target dem2d_divisible): no reference "
+              "step", file=sys.stderr)
     result = []
     for ra, rb, la, lb in pairs:
-        runs, ceil = [], []
+        runs, divs = [], []
         for rep in range(a.reps):
             j = out / f"alternate_{len(result)}_{rep}.json"
             r = subprocess.run([str(tool), ra, rb, "--json", str(j)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                text=True)
             if r.returncode != 0:
                 sys.exit(f"bench/suite.py: dem2d_alternate {ra} {rb} failed:\n{r.stdout[-2000:]}")
-            runs.append(json.load(open(j))["speed_ratio_b_over_a"])
-            if ra in sizes and os.access(ceiling, os.X_OK):
-                jc = out / f"ceiling_{len(result)}_{rep}.json"
+            ja = json.load(open(j))
+            runs.append(ja["speed_ratio_b_over_a"])
+            if ra in sizes and os.access(divisible, os.X_OK):
+                jd = out / f"divisible_{len(result)}_{rep}.json"
                 n, st = sizes[ra]
-                r = subprocess.run([str(ceiling), "--elements", str(n), "--steps", str(st), "--json", str(jc)],
+                step_us = 1e6 * ja["a"]["seconds"] / ja["steps"]  # dem2d's one-thread step in this run
+                r = subprocess.run([str(divisible), "--elements", str(n), "--steps", str(st), "--step-us",
+                                    f"{step_us:.3f}", "--json", str(jd)],
                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
                 if r.returncode != 0:
-                    sys.exit(f"bench/suite.py: dem2d_ceiling failed:\n{r.stdout[-2000:]}")
-                ceil.append(json.load(open(jc))["speed_ratio_b_over_a"])
-        result.append({"a": la, "b": lb, "runs": runs, "ceiling": ceil})
+                    sys.exit(f"bench/suite.py: dem2d_divisible failed:\n{r.stdout[-2000:]}")
+                divs.append(json.load(open(jd))["speed_ratio_b_over_a"])
+        result.append({"a": la, "b": lb, "runs": runs, "divisible": divs})
         print(f"alternated: {la} / {lb} done", file=sys.stderr, flush=True)
     return result
 
@@ -229,8 +232,8 @@ def main():
     ap.add_argument("--lmp", default="lmp")
     ap.add_argument("--alternate", default=str(ROOT / "build/bench/dem2d_alternate"),
                     help="dem2d_alternate, for the ratios within dem2d interleaved block by block")
-    ap.add_argument("--ceiling", default=str(ROOT / "build/bench/dem2d_ceiling"),
-                    help="dem2d_ceiling, the 2-thread / 1-thread ratio of a perfectly divisible step, next to dem2d's")
+    ap.add_argument("--divisible", default=str(ROOT / "build/bench/dem2d_divisible"),
+                    help="dem2d_divisible, the 2-thread / 1-thread ratio of a perfectly divisible step, next to dem2d's")
     ap.add_argument("--no-pre", action="store_true")
     ap.add_argument("--only-pre", action="store_true", help="only the PRE lattice N = 1 ... 5 (no settle, shuffled, silo)")
     a = ap.parse_args()
@@ -249,7 +252,7 @@ def main():
 
     settle = [] if a.only_pre else SETTLE + ([SETTLE_BIG] if a.big else [])
     cases = []  # (kind, label, case path, lammps folder)
-    sizes = {}  # "settle case@1": (elements, steps), for dem2d_ceiling
+    sizes = {}  # "settle case@1": (elements, steps), for dem2d_divisible
     for label, rows, cols, steps, quick in settle:
         st = quick if a.quick else steps
         case = out / f"settle_{label}.toml"
@@ -401,16 +404,17 @@ def main():
         res["alternated"] = alternated
         lines += ["", "Interleaved block by block in one process (`dem2d_alternate`, 50-step blocks; " + str(a.reps) +
                   " runs each): the speed ratio B / A of each pair of blocks; the median of the runs' medians, and the "
-                  "ratio of the total times of each run, smallest and largest. Ceiling: the same for `dem2d_ceiling` "
-                  "(a step of as many elements that divides perfectly), run right after each 2-thread run.", "",
+                  "ratio of the total times of each run, smallest and largest. Divisible step: the same for "
+                  "`dem2d_divisible` (a step that divides perfectly, of as many elements and as long as the run's "
+                  "one-thread step), run right after each 2-thread run.", "",
                   "| A | B | speed B / A, median | B / A of the totals, per run | cost B / A (median) | "
-                  "ceiling, median | ceiling, totals per run |",
+                  "divisible step, median | divisible step, totals per run |",
                   "|---|---|---|---|---|---|---|"]
         for r in alternated:
             med = statistics.median(x["median"] for x in r["runs"])
             tot = [x["of_totals"] for x in r["runs"]]
             cost = f"{1 / med:.3f}" if r["a"].startswith("PRE") else "-"
-            c = r.get("ceiling") or []
+            c = r.get("divisible") or []
             cmed = f"{statistics.median(x['median'] for x in c):.3f}" if c else "-"
             ctot = f"{min(x['of_totals'] for x in c):.3f} … {max(x['of_totals'] for x in c):.3f}" if c else "-"
             lines.append(f"| {r['a']} | {r['b']} | {med:.3f} | {min(tot):.3f} … {max(tot):.3f} | {cost} | {cmed} | "
