@@ -224,7 +224,7 @@ int main(int argc, char** argv) {
   run->add_flag("-q,--quiet", quiet, "No progress or summary on the terminal");
   dem::RunOptions run_opt;
   // Default 1: every study already runs its runs side by side on one thread each, and on a machine shared
-  // with other work a second thread mostly waits for its partner (bench/README.md, "Threads inside a run").
+  // with other work a second thread mostly waits for its partner (bench/journal.md, "Threads inside a run").
   run_opt.threads = 1;
   const std::string cores = std::to_string(std::max(1u, std::thread::hardware_concurrency()));
   run->add_option("--threads", run_opt.threads,

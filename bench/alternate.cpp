@@ -1,5 +1,5 @@
 // dem2d_alternate: two dem2d runs interleaved inside one process, a block of steps of one, then a block of
-// the other, and so on, each block timed on its own (bench/README.md, "Ratios interleaved block by block").
+// the other, and so on, each block timed on its own (bench/journal.md, "Ratios interleaved block by block").
 //
 //   dem2d_alternate A.toml[@THREADS] B.toml[@THREADS] [--block 50] [--steps N] [--set key=value ...] [--json FILE]
 //                   [--min-per-thread 4096]

@@ -1,5 +1,5 @@
 #pragma once
-// The ratio of two sides' speeds, block pair by block pair (dem2d_alternate, dem2d_divisible; bench/README.md,
+// The ratio of two sides' speeds, block pair by block pair (dem2d_alternate, dem2d_divisible; bench/journal.md,
 // "Ratios interleaved block by block").
 #include <algorithm>
 #include <cmath>

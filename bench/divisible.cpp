@@ -1,6 +1,6 @@
 // dem2d_divisible: the 2-thread / 1-thread speed ratio of a step that divides perfectly, on dem2d's own pool,
 // measured as dem2d_alternate measures dem2d's; run next to it, a reference for what two threads gave a step
-// in the same minutes (bench/README.md, "A perfectly divisible step beside dem2d's ratios").
+// in the same minutes (bench/journal.md, "A perfectly divisible step beside dem2d's ratios").
 //
 //   dem2d_divisible [--elements 100000] [--read 1] [--write 1] [--flops 40 | --step-us T] [--steps 4000]
 //                   [--block 50] [--threads 2] [--json FILE]
@@ -8,13 +8,13 @@
 // A step here is a dem2d step without anything that could keep two threads from twice one: no serial part,
 // no uneven shares, no data that two threads share, no rebuild. It is not an upper bound for dem2d: the
 // pool's cost per step weighs more in a step that is cheaper, and the host treats two different programs
-// differently (bench/README.md). Each element has `read` arrays that the step only reads and `write` arrays
-// that it reads and writes (doubles, one array per field, as dem2d's elements); the step sums the element's
-// read fields, applies `flops` dependent multiply-adds to the sum, and adds a small multiple of it to each
-// written field (no fixed point: an element updated twice, or not at all, stays different). The default is
-// arithmetic on little memory (1.6 MB at 10^5 elements); --step-us T instead picks the number of
-// multiply-adds that makes a one-thread step last T microseconds (measured at the start), e.g. as long as a
-// dem2d step. Larger --read/--write make the step a memory stream.
+// differently (the section named at the top). Each element has `read` arrays that the step only reads
+// and `write` arrays that it reads and writes (doubles, one array per field, as dem2d's elements); the step
+// sums the element's read fields, applies `flops` dependent multiply-adds to the sum, and adds a small
+// multiple of it to each written field (no fixed point: an element updated twice, or not at all, stays
+// different). The default is arithmetic on little memory (1.6 MB at 10^5 elements); --step-us T instead
+// picks the number of multiply-adds that makes a one-thread step last T microseconds (measured at the
+// start), e.g. as long as a dem2d step. Larger --read/--write make the step a memory stream.
 // Two sides, each with its own arrays, run interleaved block by block in one process: A on one thread, B on
 // `threads` threads of dem2d's pool (dem::WorkerThreads, one job per step, as Simulation::step). Printed:
 // the speed ratio B / A per pair of blocks (median, quartiles) and of the totals.

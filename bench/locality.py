@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Locality benchmark (bench/README.md, "Locality"): the settle case with its disks numbered in row order
+"""Locality benchmark (bench/journal.md, "Locality"): the settle case with its disks numbered in row order
 and at random (make_settle_case.py --shuffle), run with spatial reordering off and on
 (numerics.reorder_every), all runs interleaved, the best of --reps counting. Prints a table of speeds
 (disk-steps/s of the time loop, from summary.json), the load average before and after, and the final

@@ -19,7 +19,7 @@ from grain_laws import GRAIN_LAWS
 # the checked-in 10^4 case byte for byte.
 # --shuffle: the same disks at the same places, written as [[element]] tables in a random order (a fixed
 # seed: the same file every time), so that the element numbering has no relation to space -- a packing
-# generated or poured in random order (bench/README.md, "Locality").
+# generated or poured in random order (bench/journal.md, "Locality").
 SHUFFLE = "--shuffle" in sys.argv[1:]
 ARGS = [a for a in sys.argv[1:] if a != "--shuffle"]
 ROWS, COLS, STEPS = (int(a) for a in ARGS[:3]) if len(ARGS) > 2 else (50, 200, 10000)

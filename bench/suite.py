@@ -11,7 +11,7 @@ Cases (written into the output folder):
   pre     bench/make_pre_lattice_case.py: a bonded 100 x 100 PRE lattice, faces of N = 1 ... 5 segments,
           2000 steps, dem2d on 1 thread (LAMMPS has no such element);
   shuffled the 10^4 settle with its disks numbered at random (make_settle_case.py --shuffle), reordering off
-          and on (numerics.reorder_every = 10), dem2d on 1 thread (bench/README.md, "Locality");
+          and on (numerics.reorder_every = 10), dem2d on 1 thread (bench/journal.md, "Locality");
   silo    the silo discharge of 3x10^4 disks, cases/silo/discharge_30k.toml (bench/make_silo_case.py; --quick:
           8000 steps), dem2d on 1 thread and LAMMPS (bench/lammps_input.py: region walls for the floor and
           the gate); its rate counts the disks at the start (both codes lose disks through the slit).
@@ -272,7 +272,8 @@ def main():
                                             str(cols), str(quick if a.quick else steps), str(n)],
                                            check=True, stdout=subprocess.PIPE, text=True).stdout)
             cases.append(("pre", f"N{n}", case, None))
-    # locality (bench/README.md): the 10^4 settle with its disks numbered at random, reordering off and on
+    # locality (bench/journal.md, "Locality"): the 10^4 settle with its disks numbered at random, reordering
+    # off and on
     rows, cols, steps, quick = SHUFFLED
     text = "" if a.only_pre else subprocess.run([sys.executable, str(ROOT / "bench/make_settle_case.py"), str(rows), str(cols),
                            str(quick if a.quick else steps), "--shuffle"], check=True, stdout=subprocess.PIPE, text=True).stdout
@@ -297,7 +298,8 @@ def main():
     for rep in range(1, a.reps + 1):
         for kind, label, case, lf in cases:
             # the codes of a case, in an order rotated by one from rep to rep: a code that always ran first
-            # would always meet the machine as the previous case left it (measured: bench/README.md)
+            # would always meet the machine as the previous case left it (measured:
+            # bench/journal.md, "Ratios interleaved block by block")
             jobs = [(bl, b, th) for bl, b in builds for th in ((1, 2) if kind == "settle" else (1,))]
             if lmp and kind in ("settle", "silo"):
                 jobs.append(("LAMMPS", None, 1))

@@ -8,7 +8,7 @@
 # most runs and hang or differ on one. One did: the rebuild test at the start of a step shared its flags
 # with the integration at the end of it, so that a thread descheduled between the two could read the next
 # step's flag, enter the rebuild alone and wait for ever at its barrier (lib/dem/core/simulation.hpp,
-# displaced_now_; bench/README.md, "A hang in CI").
+# displaced_now_; bench/journal.md, "A hang in CI").
 # TSan reports such an unordered read and write on every run, whatever the timing. Its first run over the
 # engine's tests found another: the runs of a study each formatted their date with std::gmtime, whose one
 # static buffer they shared (run.cpp now uses gmtime_r).

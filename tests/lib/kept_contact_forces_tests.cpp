@@ -1,4 +1,4 @@
-// Contact forces kept only by the steps that report them (Simulation::keep_contact_forces; bench/README.md,
+// Contact forces kept only by the steps that report them (Simulation::keep_contact_forces; bench/journal.md,
 // "Contact forces kept only for the steps that report them"): a step that skips them changes no other bit,
 // on 1, 2 and 3 threads; every reader of the forces refuses a step that skipped them; a run keeps them
 // wherever its outputs read them, and a signal during a step that skipped them stops the run one step

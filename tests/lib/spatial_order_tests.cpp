@@ -225,7 +225,7 @@ TEST_CASE("A settle with reorder_every agrees with the run without it within rou
   // so the runs part at round-off: measured 1e-15 relative on these statistics. Over such a short run
   // round-off has not yet been amplified by the packing's chaos, so 1e-10 (10⁵ times the measured
   // difference) is far below any physical change (a lost history changes them at once by 10⁻³ or more).
-  // Longer runs part element by element; bench/README.md ("Locality") gives the settle's statistics then.
+  // Longer runs part element by element; bench/journal.md ("Locality") gives the settle's statistics then.
   const auto path = test::write_temp("order_settle_on_off.toml", shuffled_settle(20, 20, 0.024));
   struct Stats {
     double contacts, kinetic, mean_y;

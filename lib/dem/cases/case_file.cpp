@@ -877,7 +877,7 @@ double check_case(const Case& c, StabilityBound* bound) {
   }
   // The time step against the stability limit of every contact the case can form.
   // Simulation::stability_bound() of this model, without building a Simulation (a copy of the model with
-  // its contact lists: as much memory as the run itself, bench/README.md); the bound reads nothing that
+  // its contact lists: as much memory as the run itself, bench/journal.md); the bound reads nothing that
   // the Simulation's constructor changes (velocities, increments, preloads).
   const StabilityBound b = assembly_stability_bound(m, registered_stability_terms(m));
   if (bound) *bound = b;

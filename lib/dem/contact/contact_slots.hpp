@@ -39,7 +39,7 @@ struct SlotPair {
   std::uint32_t i = 0, j = 0;
 };
 
-/// The linear element–element slots, one per candidate pair, in columns (bench/README.md, "Where the time
+/// The linear element–element slots, one per candidate pair, in columns (bench/journal.md, "Where the time
 /// and the bytes go"): the sweep reads the pair and `touching` of every candidate (9 bytes), the law and
 /// the state only of the pairs whose cores overlap or that touched at the last step. Slot k is (pair[k],
 /// touching[k], law[k], state[k], resultant[k]); a slot that does not touch has a zero state, and its

@@ -112,7 +112,7 @@ void start_face(const FaceLaw& law, const FaceConstants& c, double u0, bool bond
 
 /// One step of the face law (M3–M12). Updates the history and returns the resultants. Inline (the
 /// contact sweeps call it once per touching face and step): the kinematics and the resultants stay in
-/// registers instead of going through memory (g++ would not inline it by itself: measured, bench/README.md).
+/// registers instead of going through memory (g++ would not inline it by itself: measured, bench/journal.md).
 [[gnu::always_inline]] inline FaceForce face_contact_force(const FaceLaw& law, const FaceConstants& c, const FaceKinematics& k,
                                     double inv_dt, FaceHistory& h);
 

@@ -32,7 +32,7 @@ struct Elements {
 
   std::size_t size() const { return x.size(); }
   /// Gives back what the arrays' growth reserved beyond their size (up to half of it after push_backs),
-  /// one array at a time (bench/README.md, the bytes).
+  /// one array at a time (bench/journal.md, "Where the time and the bytes go").
   void shrink_to_fit() {
     for (auto* v : {&x, &y, &phi, &dx, &dy, &dphi, &vx, &vy, &omega, &fx, &fy, &moment, &radius, &mass, &inertia,
                     &inv_mass, &inv_inertia})

@@ -63,7 +63,8 @@ struct PairColumns {
 /// one, and the old slots without candidate that must outlive the rebuild. First the old slots that stay
 /// are compacted towards the front (a write never passes the read), then the candidates without an old
 /// slot are inserted from the back (the write stays ahead of the read by the inserts still to come).
-/// A list that grows gets 1/8 headroom, not the vector's doubling (bench/README.md, the bytes).
+/// A list that grows gets 1/8 headroom, not the vector's doubling (bench/journal.md, "Where the time and the
+/// bytes go").
 template <class List, class Fresh, class Make>
 void merge(List slots, const std::vector<Fresh>& fresh, Make&& make) {
   const std::size_t n = fresh.size();
@@ -959,7 +960,7 @@ FaceConstants face_constants(const PairLaw& law, double r_i, double r_j, double 
 namespace {
 // The slot keeps the step's resultants (outputs), stored field by field: a whole-struct copy makes g++
 // build the FaceForce on the stack and move it with wide loads over its narrow stores (a store-forwarding
-// stall per face and step, measured in bench/README.md).
+// stall per face and step, measured in bench/journal.md).
 inline void keep_forces(FaceForce& to, const FaceForce& f) {
   to.p = f.p;
   to.q = f.q;

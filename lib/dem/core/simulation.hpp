@@ -88,7 +88,7 @@ class Simulation {
   static constexpr std::size_t kEnergyChunk = 4096;
   /// Whether the steps keep each linear element–element contact's forces and normal (its resultant) for
   /// the readers below: on unless switched off. Off, a step skips 32 bytes per contact that nothing in the
-  /// next step reads (bench/README.md, "Contact forces kept only for the steps that report them"); the
+  /// next step reads (bench/journal.md, "Contact forces kept only for the steps that report them"); the
   /// readers then refuse (std::logic_error) until a step keeps them again. Wall contacts keep theirs always.
   void keep_contact_forces(bool on) { keep_forces_ = on; }
   bool contact_forces_current() const { return forces_step_ == step_; }
@@ -204,11 +204,11 @@ class Simulation {
   // The contact laws of slots [b, e): each writes its forces into its slot (and face_push_) and adds them
   // at once to its elements, in slot order: to every element (one thread, Shares = false), or only to the
   // elements that are not shared between threads (thread_shares.hpp; gather_forces sums the shared ones).
-  // The disk-disk sweep in two stages one contact apart, and in AVX2 and plain builds (bench/README.md,
+  // The disk-disk sweep in two stages one contact apart, and in AVX2 and plain builds (bench/journal.md,
   // "The disk–disk sweep in two stages").
   template <bool Shares> DEM2D_CLONES_AVX2 void sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t e);
   // The face sweeps in two builds, picked at start-up: plain x86-64 and AVX2 (three-operand VEX code, no
-  // FMA: the same rounding bit for bit; bench/README.md, "PRE faces: the segment loop"). g++ only: clang
+  // FMA: the same rounding bit for bit; bench/journal.md, "PRE faces: the segment loop"). g++ only: clang
   // (the sanitizer build) does not clone function templates.
   template <bool Shares> DEM2D_CLONES_AVX2 void sweep_face_pairs(double inv_dt, std::size_t b, std::size_t e);
   template <bool Shares> void sweep_linear_walls(double inv_dt, std::size_t b, std::size_t e);

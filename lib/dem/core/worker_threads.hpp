@@ -2,7 +2,8 @@
 // The threads of a step (Simulation::set_threads): a small pool that stays alive between steps, with a
 // barrier. Waiting threads spin briefly, then sleep (C++20 atomic wait: a futex): on a machine shared
 // with other work a thread that waits for a descheduled partner must not burn a core (OpenMP's default
-// spinning made two threads four times as expensive in CPU time as one there; bench/README.md).
+// spinning made two threads four times as expensive in CPU time as one there; bench/journal.md, "Threads
+// inside a run").
 // Memory: everything a thread wrote before barrier() or before the end of run() is visible to every
 // thread after it (release/acquire on the counters).
 #include <atomic>

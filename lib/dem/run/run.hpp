@@ -52,7 +52,7 @@ void check_outputs(const Case& c);
 /// (output_files.hpp) when a result file cannot be written.
 /// The case is taken by value and its model is moved into the run's Simulation: a caller that no
 /// longer needs the case passes `std::move(c)`, and the model's elements exist once during the run
-/// instead of twice (bench/README.md, "Where the time and the bytes go"); a caller that keeps its case
+/// instead of twice (bench/journal.md, "Where the time and the bytes go"); a caller that keeps its case
 /// passes it as it is and the run works on a copy. Either way the results are the same.
 RunResult run_case(Case c, const RunOptions& opt);
 
