@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dem/cases/case_file.hpp"
+#include "dem/cases/case_reader.hpp"
 #include "dem/run/interrupt.hpp"
 #include "dem/run/output_files.hpp"
 #include "dem/run/resolved_case.hpp"
@@ -43,6 +44,13 @@ namespace fs = std::filesystem;
 #endif
 
 namespace {
+
+constexpr const char* kExitCodes =
+    "Exit status: 0 done (study, sweep: every check passed); 1 a study or sweep ran and a check failed; "
+    "2 a mistake in the command line or an input file (case, study, sensitivity file, checkpoint), named with "
+    "file:line: key; 3 a run blew up (the message names the step and the bound); 4 an output could not be written "
+    "(full disk, unwritable folder); 128 + the signal when stopped by SIGINT (130) or SIGTERM (143), everything "
+    "finished written.";
 
 /// One contact law's resolved settings in words, defaults included (check prints every one).
 std::string law_in_words(const nlohmann::json& l) {
@@ -281,7 +289,24 @@ int main(int argc, char** argv) {
                   "source tree's)")
       ->check(CLI::ExistingDirectory);
 
-  CLI11_PARSE(app, argc, argv);
+  app.footer(kExitCodes);
+  for (auto* sub : app.get_subcommands([](CLI::App*) { return true; })) sub->footer(kExitCodes);
+  if (argc >= 2 && argv[1][0] != '-') {  // a word that is no subcommand: say so (CLI11 would ask for one)
+    std::vector<std::string> names;
+    for (const auto* sub : app.get_subcommands([](CLI::App*) { return true; })) names.push_back(sub->get_name());
+    if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+      const std::string near = dem::nearest_word(argv[1], names);
+      fmt::print(stderr, "error: unknown subcommand '{}'{} (dem2d --help lists them: {})\n", argv[1],
+                 near.empty() ? "" : fmt::format("; did you mean '{}'?", near), fmt::join(names, ", "));
+      return 2;
+    }
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help, the version or the error
+    return code == 0 ? 0 : 2;      // every command-line mistake is exit 2, like a mistake in an input file
+  }
   dem::install_interrupt_handlers();  // SIGINT / SIGTERM: runs stop at the next step and write everything
   std::signal(SIGXFSZ, SIG_IGN);      // a file size limit makes writes fail (reported, exit 4) instead of killing
 #ifdef DEM2D_MPI

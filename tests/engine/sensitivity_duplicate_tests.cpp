@@ -44,7 +44,7 @@ TEST_CASE("A Sobol design with repeated points runs each distinct point once and
   fs::create_directories(root / "cases" / "basic");
   fs::copy_file(test::source("cases/basic/rest_on_wall.toml"), root / "cases/basic/rest_on_wall.toml");
   const fs::path f = root / "verification" / "dup" / "sensitivity.toml";
-  std::ofstream(f) << "[sensitivity]\ntitle = \"duplicates\"\ncase = \"cases/basic/rest_on_wall.toml\"\n"
+  std::ofstream(f) << "[sensitivity]\ntitle = \"duplicates\"\ncase = \"../../cases/basic/rest_on_wall.toml\"\n"
                       "outputs = [\"overlap\"]\nmethods = [\"sobol\"]\n"
                       "\n[[parameter]]\npath = \"contact.0.kn\"\nlabel = \"K\"\nlow = \"5e5 N/m\"\nhigh = \"4e6 N/m\"\n"
                       "\n[[parameter]]\npath = \"element.0.mass\"\nlabel = \"m\"\nlow = \"0.5 kg\"\nhigh = \"2 kg\"\n"

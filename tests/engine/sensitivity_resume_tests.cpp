@@ -29,7 +29,7 @@ fs::path sweep_file(const std::string& folder, const std::string& extra = {}, co
   fs::create_directories(root / "cases" / "basic");
   fs::copy_file(test::source("cases/basic/rest_on_wall.toml"), root / "cases/basic/rest_on_wall.toml");
   const fs::path f = root / "verification" / folder / "sensitivity.toml";
-  std::ofstream(f) << "[sensitivity]\ntitle = \"resume\"\ncase = \"cases/basic/rest_on_wall.toml\"\n"
+  std::ofstream(f) << "[sensitivity]\ntitle = \"resume\"\ncase = \"../../cases/basic/rest_on_wall.toml\"\n"
                       "outputs = [\"overlap\"]\nmethods = [\"oat\"]\n" << extra
                    << "\n[[parameter]]\npath = \"contact.0.kn\"\nlabel = \"K\"\nlow = \"5e5 N/m\"\nhigh = \"4e6 N/m\"\n"
                       "distribution = \"log-uniform\"\n" << kn_extra

@@ -214,7 +214,7 @@ TEST_CASE("A trend check passes only when every step moves the asserted way by m
 TEST_CASE("Bad trend and figure declarations get a located error", "[study]") {
   const fs::path out = fresh_dir("trend_bad_out");
   CHECK_THROWS_WITH(ver::run_study(trend_study("trend_bad", "sideways", "0"), quiet(out)),
-                    Contains("check.trend") && Contains("decreasing, increasing or toward_reference"));
+                    Contains("check.trend") && Contains("\"decreasing\", \"increasing\", \"toward_reference\", got \"sideways\""));
   const fs::path g = study_copy("range_bad", {}, {}, "");
   std::ofstream(g, std::ios::app) << "\n[[figure]]\ny = \"t\"\nx_range = [1.0, 0.0]\n";
   CHECK_THROWS_WITH(ver::run_study(g, quiet(out)), Contains("figure.x_range") && Contains("lo < hi"));

@@ -61,6 +61,25 @@ with tempfile.TemporaryDirectory() as tmp:
             fails.append(f"run --threads {value}: exit {r.returncode}, stderr {r.stderr!r} (expected a refusal naming "
                          f"--threads, no output folder)")
 
+# The command line's own mistakes: an unknown subcommand is named with the nearest one; every usage
+# error is exit 2 (the exit statuses are listed in --help).
+typo = run("rnu", "cases/impact/disk_wall.toml")
+if typo.returncode != 2 or "unknown subcommand 'rnu'; did you mean 'run'?" not in typo.stderr:
+    fails.append(f"dem2d rnu: exit {typo.returncode}, stderr {typo.stderr!r} (expected 2 and \"did you mean 'run'?\")")
+far = run("frobnicate")
+if far.returncode != 2 or "unknown subcommand 'frobnicate'" not in far.stderr or "did you mean" in far.stderr:
+    fails.append(f"dem2d frobnicate: exit {far.returncode}, stderr {far.stderr!r} (expected 2, no suggestion)")
+for args in (("run",), ("run", "no/such/case.toml"), ("check", "cases/impact/disk_wall.toml", "--bogus"), ()):
+    r = run(*args)
+    if r.returncode != 2:
+        fails.append(f"dem2d {' '.join(args)}: exit {r.returncode} (expected 2 for a command-line mistake)")
+h = run("--help")
+if h.returncode != 0 or "Exit status: 0 done" not in h.stdout or "3 a run blew up" not in h.stdout:
+    fails.append(f"--help: exit {h.returncode}, no exit statuses in {h.stdout[-300:]!r}")
+hs = run("study", "--help")
+if hs.returncode != 0 or "Exit status:" not in hs.stdout:
+    fails.append(f"study --help: exit {hs.returncode}, no exit statuses")
+
 if fails:
     sys.exit("FAIL:\n  " + "\n  ".join(fails))
 print("OK:", v.stdout.strip())

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "dem/cases/case_reader.hpp"
 #include "dem/cases/units.hpp"
 
 namespace ver {
@@ -36,36 +37,44 @@ double number_or_quantity(const std::string& file, const toml::node& n, const st
 
 /// The values form: one --set path, one value per level (the format of the override is the one the
 /// engine always used, so that the runs and their cache keys do not change).
-Refinement read_values(const toml::table& r, const std::string& file) {
+Refinement read_values(const toml::table& t, const std::string& file) {
+  const dem::TableReader r(t, "refinement", file, "verification/README.md, \"The study file\"");
   Refinement out;
-  out.parameter = r["parameter"].value_or(std::string());
-  out.label = r["label"].value_or(out.parameter);
-  if (out.parameter.empty()) fail(file, "refinement.parameter", "missing: the case key to refine, e.g. numerics.dt");
+  out.parameter = r.string("parameter");
+  out.label = r.string("label", out.parameter);
+  if (out.parameter.empty()) r.fail("parameter", "missing: the case key to refine, e.g. numerics.dt");
   std::vector<double> values;
-  if (const toml::array* a = r["values"].as_array()) {
-    for (const auto& x : *a) values.push_back(number_or_quantity(file, x, "refinement.values"));
+  r.mark("values");
+  if (const toml::node* vn = r.node("values")) {
+    const toml::array* a = vn->as_array();
+    if (!a) r.fail("values", "expected an array of the parameter's values, coarse → fine");
+    for (const auto& x : *a) values.push_back(r.any_quantity_of(x, "values").value);
+    for (const char* key : {"base", "ratio", "levels"})
+      if (r.has(key)) r.fail(key, "give values = [...] or base, ratio, levels; not both");
   } else {
-    const toml::node* b = r.get("base");
-    if (!b) fail(file, "refinement", "give values = [...] or base, ratio, levels (or [[level]] tables)");
-    const double base = number_or_quantity(file, *b, "refinement.base");
-    const double ratio = r["ratio"].value_or(2.0);
-    const auto levels = r["levels"].value_or(int64_t{4});
-    if (ratio <= 1.0 || levels < 2) fail(file, "refinement", "need ratio > 1 and levels >= 2");
+    if (!r.has("base")) r.fail_here("give values = [...] or base, ratio, levels (or [[level]] tables)");
+    const double base = r.any_quantity("base").value;
+    const double ratio = r.number_in("ratio", 1.0, 1e6, 2.0, true);
+    const auto levels = r.integer("levels", 2, 64, 4);
     for (int64_t k = 0; k < levels; ++k) values.push_back(base / std::pow(ratio, static_cast<double>(k)));
   }
-  if (values.size() < 2) fail(file, "refinement.values", "need at least two levels");
-  const std::string hk = r["h"].value_or(std::string("value"));
-  if (hk != "value" && hk != "inverse")
-    fail(file, "refinement.h", "expected \"value\" (h = the parameter, e.g. Δt) or \"inverse\" (h = 1/parameter, e.g. N)");
+  if (values.size() < 2) r.fail("values", "need at least two levels");
+  const std::string hk = r.choice("h", {"value", "inverse"}, "value");
   out.inverse = hk == "inverse";
   for (double v : values) {
+    if (!(v > 0.0)) r.fail(r.has("values") ? "values" : "base", fmt::format("expected positive values, got {:g}", v));
     RefinementLevel l;
     l.value = v;
     l.h = out.inverse ? 1.0 / v : v;
+    if (!out.levels.empty() && !(l.h < out.levels.back().h))
+      r.fail(r.has("values") ? "values" : "base",
+             fmt::format("expected the levels from coarse to fine (h = {} strictly decreasing): {:g} follows {:g}",
+                         out.inverse ? "1/value" : "the value", v, out.levels.back().value));
     l.set.push_back(v == std::floor(v) && std::abs(v) < 1e15 ? fmt::format("{}={}", out.parameter, static_cast<long long>(v))
                                                             : fmt::format("{}={:.17g}", out.parameter, v));
     out.levels.push_back(l);
   }
+  r.finish();
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <map>
 #include <mutex>
 #include <numbers>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -15,6 +16,7 @@
 #include <toml++/toml.h>
 
 #include "dem/cases/case_file.hpp"
+#include "dem/cases/case_reader.hpp"
 #include "dem/cases/units.hpp"
 #include "dem/run/output_files.hpp"
 #include "dem/run/run.hpp"
@@ -35,7 +37,7 @@ namespace {
 using sens::Parameter;
 
 struct Sens {
-  fs::path file, root;
+  fs::path file, case_file;  // case_file: the base case, resolved relative to the sensitivity file's folder
   std::string name, title, requirement, case_path;
   std::optional<sens::TestFunction> function;
   std::vector<std::string> set, outputs;
@@ -66,162 +68,226 @@ struct Sens {
   nlohmann::json setup = nlohmann::json::object();
 };
 
+constexpr const char* kHelp = "verification/README.md, \"Sensitivity studies\"";
+using dem::TableReader;
+
 [[noreturn]] void fail_at(const Sens& s, const toml::node* n, const std::string& key, const std::string& what) {
-  throw std::runtime_error(n ? fmt::format("{}:{}: {}: {}", s.file.string(), n->source().begin.line, key, what)
-                             : fmt::format("{}: {}: {}", s.file.string(), key, what));
+  throw dem::CaseError(n ? fmt::format("{}: {}: {}", dem::where(*n, s.file.string()), key, what)
+                         : fmt::format("{}: {}: {}", s.file.string(), key, what));
 }
 
-double quantity(const Sens& s, const toml::node& n, const std::string& key) {
-  if (auto d = n.value<double>()) return *d;
-  if (auto str = n.value_exact<std::string>()) {
-    try {
-      return dem::parse_quantity(*str).value;
-    } catch (const std::exception& e) {
-      fail_at(s, &n, key, e.what());
-    }
+/// A list of "path=value" overrides.
+std::vector<std::string> overrides_of(const TableReader& r, const toml::node& n, const std::string& key) {
+  const toml::array* a = n.as_array();
+  if (!a) r.fail_at(n, key, "expected a list of \"path=value\" overrides");
+  std::vector<std::string> sets;
+  for (const auto& x : *a) {
+    auto v = x.value_exact<std::string>();
+    if (!v || v->find('=') == std::string::npos) r.fail_at(x, key, "expected \"path=value\"");
+    sets.push_back(*v);
   }
-  fail_at(s, &n, key, "expected a number or a string with a unit");
+  return sets;
 }
 
-std::vector<std::string> strings(const Sens& s, const toml::table& t, const std::string& key) {
-  std::vector<std::string> out;
-  if (const toml::node* n = t.get(key)) {
-    const toml::array* a = n->as_array();
-    if (!a) fail_at(s, n, key, "expected an array of strings");
-    for (const auto& x : *a) {
-      auto v = x.value_exact<std::string>();
-      if (!v) fail_at(s, &x, key, "expected an array of strings");
-      out.push_back(*v);
-    }
-  }
-  return out;
-}
-
-std::size_t positive(const Sens& s, const toml::table& t, const char* key, std::size_t def, const std::string& where) {
-  const toml::node* n = t.get(key);
-  if (!n) return def;
-  auto v = n->value_exact<int64_t>();
-  if (!v || *v < 1) fail_at(s, n, where + "." + key, "expected a positive integer");
-  return static_cast<std::size_t>(*v);
-}
-
-Sens read_sens(const fs::path& file) {
-  Sens s;
-  s.file = file;
-  s.root = fs::absolute(file).parent_path().parent_path().parent_path();  // verification/<name>/sensitivity.toml
-  toml::table root;
-  try {
-    root = toml::parse_file(file.string());
-  } catch (const toml::parse_error& e) {
-    throw std::runtime_error(fmt::format("{}:{}: syntax: {}", file.string(), e.source().begin.line, e.description()));
-  }
-  const toml::table* st = root["sensitivity"].as_table();
-  if (!st) fail_at(s, nullptr, "sensitivity", "missing [sensitivity] table");
-  s.name = (*st)["name"].value_or(fs::absolute(file).parent_path().filename().string());
+void read_header(Sens& s, const TableReader& top) {
+  const std::string file = s.file.string();
+  const toml::table* st = top.table("sensitivity");
+  if (!st) top.fail("sensitivity", "missing [sensitivity] table");
+  TableReader r(*st, "sensitivity", file, kHelp);
+  s.name = r.string("name", fs::absolute(s.file).parent_path().filename().string());
   if (s.name.empty() || s.name == "." || s.name == ".." ||
       s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") != std::string::npos)
-    fail_at(s, st->get("name"), "sensitivity.name", fmt::format("expected a plain folder name, got \"{}\"", s.name));
-  s.title = (*st)["title"].value_or(s.name);
-  s.requirement = (*st)["requirement"].value_or(std::string());
-  s.case_path = (*st)["case"].value_or(std::string());
-  if (const toml::node* fn = st->get("function")) {
-    auto name = fn->value_exact<std::string>();
-    if (!name || (*name != "ishigami" && *name != "g" && *name != "linear"))
-      fail_at(s, fn, "sensitivity.function", "expected \"ishigami\", \"g\" or \"linear\"");
-    sens::TestFunction f{*name, {}};
-    if (const toml::array* c = (*st)["coefficients"].as_array())
-      for (const auto& x : *c) f.coefficients.push_back(quantity(s, x, "sensitivity.coefficients"));
-    if (f.name == "ishigami" && f.coefficients.size() != 2)
-      fail_at(s, st->get("coefficients"), "sensitivity.coefficients", "ishigami takes [a, b]");
-    if (f.name != "ishigami" && f.coefficients.empty())
-      fail_at(s, st, "sensitivity.coefficients", "expected one coefficient per parameter");
+    r.fail("name", fmt::format("expected a plain folder name, got \"{}\"", s.name));
+  s.title = r.string("title", s.name);
+  s.requirement = r.string("requirement", "");
+  s.case_path = r.string("case", "");
+  if (!s.case_path.empty()) {
+    s.case_file = (fs::absolute(s.file).parent_path() / s.case_path).lexically_normal();
+    if (std::error_code ec; !fs::is_regular_file(s.case_file, ec))
+      throw dem::CaseError(fmt::format("file not found: {} (from {})", s.case_file.string(), dem::where(*st->get("case"), file)));
+  }
+  if (r.has("function")) {
+    sens::TestFunction f{r.choice("function", {"ishigami", "g", "linear"}, ""), {}};
+    r.mark("coefficients");
+    if (const toml::node* cn = r.node("coefficients")) {
+      const toml::array* c = cn->as_array();
+      if (!c) r.fail("coefficients", "expected an array of numbers");
+      for (const auto& x : *c) f.coefficients.push_back(r.any_quantity_of(x, "coefficients").value);
+    }
+    if (f.name == "ishigami" && f.coefficients.size() != 2) r.fail("coefficients", "ishigami takes [a, b]");
+    if (f.name != "ishigami" && f.coefficients.empty()) r.fail("coefficients", "expected one coefficient per parameter");
     s.function = f;
+  } else if (r.has("coefficients")) {
+    r.fail("coefficients", "coefficients belong to a test function (function = ...)");
   }
   if (s.case_path.empty() == !s.function.has_value())
-    fail_at(s, st, "sensitivity.case", "give either a case file or a test function (function = \"ishigami\" | \"g\" | \"linear\")");
-  s.set = strings(s, *st, "set");
-  s.outputs = strings(s, *st, "outputs");
-  if (s.function) s.outputs = {"f"};
-  if (s.outputs.empty()) fail_at(s, st, "sensitivity.outputs", "missing: the probes of the case to analyse");
-  for (const std::string& m : strings(s, *st, "methods")) {
+    r.fail_here("give either a case file or a test function (function = \"ishigami\" | \"g\" | \"linear\")");
+  s.set = r.strings("set");
+  s.outputs = r.strings("outputs");
+  if (s.function) {
+    if (!s.outputs.empty()) r.fail("outputs", "a test function has one output, f: remove outputs");
+    s.outputs = {"f"};
+  }
+  if (s.outputs.empty()) r.fail_here("missing outputs: the probes of the case to analyse");
+  for (const std::string& m : r.strings("methods")) {
     if (m == "oat") s.oat = true;
     else if (m == "morris") s.morris = true;
     else if (m == "sobol") s.sobol = true;
-    else fail_at(s, st->get("methods"), "sensitivity.methods", fmt::format("expected oat, morris or sobol, got \"{}\"", m));
-  }
-  if (!s.oat && !s.morris && !s.sobol) fail_at(s, st, "sensitivity.methods", "missing: any of [\"oat\", \"morris\", \"sobol\"]");
-  s.max_failed = static_cast<int>((*st)["max_failed_runs"].value_or(int64_t{0}));
-  if (const toml::node* n = st->get("dt_fraction")) {
-    if (auto str = n->value_exact<std::string>(); str && *str == "base") s.dt_fraction_base = true;
-    else if (auto x = n->value<double>(); x && *x > 0.0) s.dt_fraction = *x;
-    else fail_at(s, n, "sensitivity.dt_fraction", "expected a number > 0 (Δt = that × the guard's limit) or \"base\"");
-    if (s.function) fail_at(s, n, "sensitivity.dt_fraction", "only for a case (a test function has no time step)");
-  }
-  if (const toml::node* rn = st->get("replicates")) {
-    const toml::array* ra = rn->as_array();
-    if (!ra || ra->size() < 2)
-      fail_at(s, rn, "sensitivity.replicates", "expected at least 2 lists of overrides, e.g. [[\"numerics.dt=5e-5 s\"], [\"numerics.dt=4.9e-5 s\"]]");
-    if (s.function) fail_at(s, rn, "sensitivity.replicates", "only for a case (a test function has no noise)");
-    for (const auto& e : *ra) {
-      const toml::array* ea = e.as_array();
-      if (!ea) fail_at(s, &e, "sensitivity.replicates", "expected a list of \"path=value\" overrides per replicate");
-      std::vector<std::string> sets;
-      for (const auto& x : *ea) {
-        auto v = x.value_exact<std::string>();
-        if (!v || v->find('=') == std::string::npos) fail_at(s, &x, "sensitivity.replicates", "expected \"path=value\"");
-        sets.push_back(*v);
-      }
-      s.replicates.push_back(sets);
+    else {
+      const std::string near = dem::nearest_word(m, {"oat", "morris", "sobol"});
+      r.fail("methods", fmt::format("expected oat, morris or sobol, got \"{}\"{}", m, near.empty() ? "" : "; did you mean \"" + near + "\"?"));
     }
   }
-  if (const toml::table* su = (*st)["setup"].as_table())
+  if (!s.oat && !s.morris && !s.sobol) r.fail_here("missing methods: any of [\"oat\", \"morris\", \"sobol\"]");
+  s.max_failed = static_cast<int>(r.integer("max_failed_runs", 0, 1'000'000'000, 0));
+  r.mark("dt_fraction");
+  if (const toml::node* n = r.node("dt_fraction")) {
+    if (auto str = n->value_exact<std::string>(); str && *str == "base") s.dt_fraction_base = true;
+    else if (auto x = n->value<double>(); x && *x > 0.0 && std::isfinite(*x)) s.dt_fraction = *x;
+    else r.fail("dt_fraction", "expected a number > 0 (Δt = that × the guard's limit) or \"base\"");
+    if (s.function) r.fail("dt_fraction", "only for a case (a test function has no time step)");
+  }
+  r.mark("replicates");
+  if (const toml::node* rn = r.node("replicates")) {
+    const toml::array* ra = rn->as_array();
+    if (!ra || ra->size() < 2)
+      r.fail("replicates", "expected at least 2 lists of overrides, e.g. [[\"numerics.dt=5e-5 s\"], [\"numerics.dt=4.9e-5 s\"]]");
+    if (s.function) r.fail("replicates", "only for a case (a test function has no noise)");
+    for (const auto& e : *ra) s.replicates.push_back(overrides_of(r, e, "replicates"));
+  }
+  if (const toml::table* su = r.table("setup"))
     for (const auto& [k, v] : *su) {
       if (auto x = v.value<double>()) s.setup[std::string(k.str())] = *x;
       else if (auto y = v.value_exact<std::string>()) s.setup[std::string(k.str())] = *y;
+      else r.fail_at(v, "setup." + std::string(k.str()), "expected a number or a string (shown in the report)");
     }
-  const toml::node* pn = root.get("parameter");
-  if (!pn || !pn->as_array()) fail_at(s, pn, "parameter", "expected [[parameter]] tables (path, low, high)");
-  for (const auto& n : *pn->as_array()) {
-    const toml::table* t = n.as_table();
-    if (!t) fail_at(s, &n, "parameter", "expected [[parameter]] tables");
-    Parameter p;
-    p.path = (*t)["path"].value_or(std::string());
-    if (p.path.empty() && !s.function) fail_at(s, &n, "parameter.path", "missing: the --set path, e.g. contact.0.kn");
-    p.label = (*t)["label"].value_or(p.path.empty() ? fmt::format("x{}", s.params.size() + 1) : p.path);
-    if (!t->get("low") || !t->get("high")) fail_at(s, &n, "parameter", fmt::format("\"{}\": need low and high", p.label));
-    p.low = quantity(s, *t->get("low"), "parameter.low");
-    if (auto str = t->get("low")->value_exact<std::string>())
-      p.angle = dem::parse_quantity(*str).dim == dem::dims::angle;
-    p.high = quantity(s, *t->get("high"), "parameter.high");
-    const std::string dist = (*t)["distribution"].value_or(std::string("uniform"));
-    if (dist != "uniform" && dist != "log-uniform")
-      fail_at(s, t->get("distribution"), "parameter.distribution", "expected \"uniform\" or \"log-uniform\"");
-    p.log_uniform = dist == "log-uniform";
-    p.integer = (*t)["integer"].value_or(false);
-    if (const toml::node* an = t->get("also")) {
-      const toml::array* aa = an->as_array();
-      if (!aa) fail_at(s, an, "parameter.also", "expected an array of { path, scale, exponent } tables");
-      for (const auto& x : *aa) {
-        const toml::table* ft = x.as_table();
-        if (!ft || !(*ft)["path"].value<std::string>()) fail_at(s, &x, "parameter.also", "expected { path = \"...\", scale = 1, exponent = 1 }");
-        Parameter::Follower fo;
-        fo.path = *(*ft)["path"].value<std::string>();
-        if (const toml::node* sc = ft->get("scale")) fo.scale = quantity(s, *sc, "parameter.also.scale");
-        fo.exponent = (*ft)["exponent"].value_or(1.0);
-        p.also.push_back(fo);
+  r.finish();
+}
+
+/// The value of a parameter bound as written, checked against the case key it sets: the case reader
+/// reads the case with `path = <value as written>` and refuses a wrong unit ("1 m" for a damping ratio).
+void check_against_case(const Sens& s, const TableReader& r, const Parameter& p, const char* key) {
+  if (s.function || p.path.empty()) return;
+  const toml::node& n = *r.node(key);
+  const std::string written = n.is_string() ? *n.value<std::string>() : fmt::format("{:.17g}", *n.value<double>());
+  std::vector<std::string> sets = s.set;
+  sets.push_back(p.path + "=" + written);
+  try {
+    (void)dem::read_case(s.case_file, sets);
+  } catch (const dem::CaseError& e) {
+    r.fail(key, fmt::format("\"{}\" cannot set {}: {}", written, p.path, e.what()));
+  }
+}
+
+Parameter read_parameter(const Sens& s, const TableReader& r, const toml::node& n) {
+  Parameter p;
+  p.path = r.string("path", "");
+  if (p.path.empty() && !s.function) r.fail_at(n, "path", "missing: the --set path, e.g. contact.0.kn");
+  if (!p.path.empty() && s.function) r.fail("path", "a test function's inputs have no case path: remove path");
+  p.label = r.string("label", p.path.empty() ? fmt::format("x{}", s.params.size() + 1) : p.path);
+  const dem::Quantity low = r.any_quantity("low"), high = r.any_quantity("high");
+  if (!(low.dim == high.dim)) r.fail("high", fmt::format("low is {}, high is {}: give both in one kind of unit",
+                                                         dem::to_string(low.dim), dem::to_string(high.dim)));
+  p.low = low.value;
+  p.high = high.value;
+  p.angle = low.dim == dem::dims::angle;
+  check_against_case(s, r, p, "low");
+  check_against_case(s, r, p, "high");
+  p.log_uniform = r.choice("distribution", {"uniform", "log-uniform"}, "uniform") == "log-uniform";
+  p.integer = r.boolean("integer", false);
+  r.mark("also");
+  if (const toml::node* an = r.node("also")) {
+    const toml::array* aa = an->as_array();
+    if (!aa) r.fail("also", "expected an array of { path, scale, exponent } tables");
+    for (const auto& x : *aa) {
+      const toml::table* ft = x.as_table();
+      if (!ft) r.fail_at(x, "also", "expected { path = \"...\", scale = 1, exponent = 1 }");
+      TableReader f(*ft, "parameter.also", s.file.string(), kHelp);
+      Parameter::Follower fo;
+      fo.path = f.string("path");
+      fo.scale = f.optional_any_quantity("scale").value_or(dem::Quantity{1.0, dem::dims::dimensionless}).value;
+      fo.exponent = f.number("exponent", 1.0);
+      f.finish();
+      p.also.push_back(fo);
+    }
+  }
+  if (p.integer && (p.log_uniform || p.low != std::floor(p.low) || p.high != std::floor(p.high)))
+    r.fail("integer", fmt::format("\"{}\": integer parameters need integer low and high, uniform", p.label));
+  if (!(p.high > p.low) || (p.log_uniform && !(p.low > 0.0)))
+    r.fail_at(n, "low", fmt::format("\"{}\": need low < high (and low > 0 for log-uniform)", p.label));
+  return p;
+}
+
+void read_methods(Sens& s, const TableReader& top) {
+  const std::string file = s.file.string();
+  constexpr std::int64_t kMaxSize = std::int64_t{1} << 24;  // runs and samples: beyond any machine's budget
+  if (const toml::table* t = top.table("oat")) {
+    TableReader r(*t, "oat", file, kHelp);
+    s.oat_points = static_cast<std::size_t>(r.integer("points", 2, 100000, 5));
+    r.finish();
+  }
+  if (const toml::table* t = top.table("morris")) {
+    TableReader r(*t, "morris", file, kHelp);
+    s.trajectories = static_cast<std::size_t>(r.integer("trajectories", 1, kMaxSize, 10));
+    s.levels = static_cast<int>(r.integer("levels", 2, 1000, 4));
+    s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, std::numeric_limits<std::int64_t>::max(), 1));
+    if (s.levels % 2 != 0) r.fail("levels", "expected an even number of levels (4, 6, 8)");
+    r.finish();
+  }
+  if (const toml::table* t = top.table("sobol")) {
+    TableReader r(*t, "sobol", file, kHelp);
+    s.samples = static_cast<std::size_t>(r.integer("samples", 1, kMaxSize, 256));
+    s.resamples = static_cast<std::size_t>(r.integer("bootstrap", 1, 1'000'000, 1000));
+    s.confidence = r.number_in("confidence", 0.0, 1.0, 0.95, true, true);
+    r.mark("convergence");
+    if (const toml::node* cn = r.node("convergence")) {
+      const toml::array* c = cn->as_array();
+      if (!c) r.fail("convergence", "expected an array of sample sizes");
+      for (const auto& x : *c) {
+        auto v = x.value_exact<int64_t>();
+        if (!v || *v < 4 || *v > kMaxSize) r.fail_at(x, "convergence", "expected sample sizes from 4 to 2^24, increasing");
+        s.convergence.push_back(static_cast<std::size_t>(*v));
+      }
+      for (std::size_t k = 1; k < s.convergence.size(); ++k)
+        if (s.convergence[k] <= s.convergence[k - 1]) r.fail("convergence", "expected increasing sample sizes");
+    }
+    if (r.has("expected_order")) {
+      s.expected_order = r.number_in("expected_order", 0.0, 20.0, 0.0, true);
+      if (s.convergence.empty()) r.fail("expected_order", "needs convergence = [sample sizes] (the order is their error rate)");
+    } else if (r.has("order_band")) {
+      r.fail("order_band", "needs expected_order (the band is around it)");
+    }
+    s.order_band = r.number_in("order_band", 0.0, 10.0, 0.3, true);
+    r.mark("transforms");
+    if (const toml::node* tn = r.node("transforms")) {
+      const toml::array* ta = tn->as_array();
+      if (!ta) r.fail("transforms", "expected an array such as [\"rank\"] or [\"log\", \"rank\"]");
+      for (const auto& x : *ta) {
+        try {
+          const auto word = x.value_exact<std::string>();
+          if (!word) throw std::invalid_argument("expected a string: \"log\" or \"rank\"");
+          const sens::Transform tf = sens::parse_transform(*word);
+          if (tf == sens::Transform::none) throw std::invalid_argument("\"none\" is always analysed; list \"log\" or \"rank\"");
+          if (std::find(s.transforms.begin(), s.transforms.end(), tf) != s.transforms.end()) throw std::invalid_argument("listed twice");
+          s.transforms.push_back(tf);
+        } catch (const std::invalid_argument& e) {
+          r.fail_at(x, "transforms", e.what());
+        }
       }
     }
-    if (p.integer && (p.log_uniform || p.low != std::floor(p.low) || p.high != std::floor(p.high)))
-      fail_at(s, &n, "parameter.integer", fmt::format("\"{}\": integer parameters need integer low and high, uniform", p.label));
-    if (!(p.high > p.low) || (p.log_uniform && !(p.low > 0.0)))
-      fail_at(s, &n, "parameter", fmt::format("\"{}\": need low < high (and low > 0 for log-uniform)", p.label));
-    s.params.push_back(p);
+    r.finish();
   }
+  // A method's table without the method listed is a mistake (its settings would be ignored).
+  for (const auto& [name, on] : {std::pair{"oat", s.oat}, std::pair{"morris", s.morris}, std::pair{"sobol", s.sobol}})
+    if (!on && top.node(name)) top.fail(name, fmt::format("[{}] is given but methods does not list \"{}\"", name, name));
+}
+
+/// What holds across the tables: Δt and replicates against the parameters, the function's inputs.
+void cross_check(const Sens& s, const toml::table& st, const toml::node* pn) {
   if (s.dt_fraction || s.dt_fraction_base)
     for (const Parameter& p : s.params)
       if (p.path == "numerics.dt")
-        fail_at(s, st->get("dt_fraction"), "sensitivity.dt_fraction",
-                "Δt follows the guard's limit, so numerics.dt cannot also be a parameter");
+        fail_at(s, st.get("dt_fraction"), "sensitivity.dt_fraction", "Δt follows the guard's limit, so numerics.dt cannot also be a parameter");
   for (const auto& sets : s.replicates)  // a replicate's override would silently undo a parameter's value
     for (const std::string& x : sets) {
       const std::string path = x.substr(0, x.find('='));
@@ -229,54 +295,58 @@ Sens read_sens(const fs::path& file) {
         bool clash = p.path == path;
         for (const auto& f : p.also) clash = clash || f.path == path;
         if (clash)
-          fail_at(s, st->get("replicates"), "sensitivity.replicates",
+          fail_at(s, st.get("replicates"), "sensitivity.replicates",
                   fmt::format("\"{}\" is set by the parameter \"{}\"; a replicate may not override it", path, p.label));
       }
       if (path == "numerics.dt" && (s.dt_fraction || s.dt_fraction_base))
-        fail_at(s, st->get("replicates"), "sensitivity.replicates", "Δt follows the guard's limit (dt_fraction): a replicate may not set it");
+        fail_at(s, st.get("replicates"), "sensitivity.replicates", "Δt follows the guard's limit (dt_fraction): a replicate may not set it");
     }
   if (s.function && sens::dimension(*s.function) != s.params.size())
     fail_at(s, pn, "parameter", fmt::format("the function {} takes {} inputs, {} parameters given", s.function->name,
                                             sens::dimension(*s.function), s.params.size()));
-  if (const toml::table* t = root["oat"].as_table()) s.oat_points = positive(s, *t, "points", 5, "oat");
-  if (s.oat_points < 2) fail_at(s, root.get("oat"), "oat.points", "at least 2");
-  if (const toml::table* t = root["morris"].as_table()) {
-    s.trajectories = positive(s, *t, "trajectories", 10, "morris");
-    s.levels = static_cast<int>(positive(s, *t, "levels", 4, "morris"));
-    s.seed = positive(s, *t, "seed", 1, "morris");
-    if (s.levels % 2 != 0) fail_at(s, t->get("levels"), "morris.levels", "expected an even number of levels (4, 6, 8)");
-  }
-  if (const toml::table* t = root["sobol"].as_table()) {
-    s.samples = positive(s, *t, "samples", 256, "sobol");
-    s.resamples = positive(s, *t, "bootstrap", 1000, "sobol");
-    s.confidence = (*t)["confidence"].value_or(0.95);
-    if (!(s.confidence > 0.0 && s.confidence < 1.0)) fail_at(s, t->get("confidence"), "sobol.confidence", "expected 0 < c < 1");
-    if (const toml::array* c = (*t)["convergence"].as_array())
-      for (const auto& x : *c) {
-        auto v = x.value_exact<int64_t>();
-        if (!v || *v < 4) fail_at(s, &x, "sobol.convergence", "expected sample sizes >= 4, increasing");
-        s.convergence.push_back(static_cast<std::size_t>(*v));
+  if (s.sobol && 2 * s.params.size() > 40) fail_at(s, pn, "parameter", "Sobol': at most 20 parameters (GSL's sequence has 40 dimensions)");
+  if (!s.function) {  // every output is a probe of the case
+    const dem::Case base = dem::read_case(s.case_file, s.set);
+    std::vector<std::string> names;
+    for (const auto& p : base.probes) names.push_back(p.name);
+    for (const std::string& o : s.outputs)
+      if (std::find(names.begin(), names.end(), o) == names.end()) {
+        const std::string near = dem::nearest_word(o, names);
+        fail_at(s, st.get("outputs"), "sensitivity.outputs", fmt::format("the case has no probe \"{}\"{}", o,
+                near.empty() ? "" : fmt::format("; did you mean \"{}\"?", near)));
       }
-    for (std::size_t k = 1; k < s.convergence.size(); ++k)
-      if (s.convergence[k] <= s.convergence[k - 1]) fail_at(s, t->get("convergence"), "sobol.convergence", "expected increasing sample sizes");
-    if (auto p = (*t)["expected_order"].value<double>()) s.expected_order = *p;
-    s.order_band = (*t)["order_band"].value_or(0.3);
-    if (const toml::node* tn = t->get("transforms")) {
-      const toml::array* ta = tn->as_array();
-      if (!ta) fail_at(s, tn, "sobol.transforms", "expected an array such as [\"rank\"] or [\"log\", \"rank\"]");
-      for (const auto& x : *ta) {
-        try {
-          const sens::Transform tf = sens::parse_transform(x.value_or(std::string("?")));
-          if (tf == sens::Transform::none) throw std::invalid_argument("\"none\" is always analysed; list \"log\" or \"rank\"");
-          if (std::find(s.transforms.begin(), s.transforms.end(), tf) != s.transforms.end()) throw std::invalid_argument("listed twice");
-          s.transforms.push_back(tf);
-        } catch (const std::exception& e) {
-          fail_at(s, &x, "sobol.transforms", e.what());
-        }
+  }
+  if (!s.function)  // every replicate's overrides apply to the case
+    for (const auto& sets : s.replicates) {
+      std::vector<std::string> all = s.set;
+      all.insert(all.end(), sets.begin(), sets.end());
+      try {
+        (void)dem::read_case(s.case_file, all);
+      } catch (const dem::CaseError& e) {
+        fail_at(s, st.get("replicates"), "sensitivity.replicates", e.what());
       }
     }
+}
+
+Sens read_sens(const fs::path& file) {
+  Sens s;
+  s.file = file;
+  const toml::table root = dem::parse_toml_file(file);
+  TableReader top(root, "", file.string(), kHelp);
+  read_header(s, top);
+  top.mark("parameter");
+  const toml::node* pn = root.get("parameter");
+  if (!pn || !pn->as_array() || pn->as_array()->empty()) fail_at(s, pn, "parameter", "expected [[parameter]] tables (path, low, high)");
+  for (const auto& n : *pn->as_array()) {
+    const toml::table* t = n.as_table();
+    if (!t) fail_at(s, &n, "parameter", "expected [[parameter]] tables");
+    TableReader r(*t, "parameter", file.string(), kHelp);
+    s.params.push_back(read_parameter(s, r, n));
+    r.finish();
   }
-  if (s.sobol && 2 * s.params.size() > 40) fail_at(s, pn, "parameter", "Sobol': at most 20 parameters (GSL's sequence has 40 dimensions)");
+  read_methods(s, top);
+  top.finish();
+  cross_check(s, *root["sensitivity"].as_table(), pn);
   return s;
 }
 
@@ -333,7 +403,7 @@ struct Runner {
     std::vector<std::size_t> slot;
     std::vector<fs::path> entries;
     std::vector<std::string> case_paths;
-    const fs::path case_file = fs::absolute(s.root / s.case_path);
+    const fs::path case_file = fs::absolute(s.case_file);
     // Δt tied to the guard: each run's limit first (in parallel; a refusal is the run's result).
     std::vector<char> settled(runs.size(), 0);
     // A design may hold the same point more than once (Saltelli's row 0 is the origin in A, B and
@@ -345,7 +415,7 @@ struct Runner {
       parallel_for(runs.size(), jobs, [&](std::size_t k) {
         Run& r = runs[k];
         try {
-          r.dt = dt_fraction * guard_limit(s.root / s.case_path, r.sets);
+          r.dt = dt_fraction * guard_limit(s.case_file, r.sets);
           r.sets.push_back(fmt::format("numerics.dt={:.17g}", r.dt));
         } catch (const dem::CaseError& e) {
           r.status = "refused";
@@ -357,7 +427,7 @@ struct Runner {
     for (std::size_t k = 0; k < runs.size(); ++k) {
       if (settled[k]) continue;
       Run& r = runs[k];
-      const dem::Case c = dem::read_case(s.root / s.case_path, r.sets);  // a bad path or value: the study fails
+      const dem::Case c = dem::read_case(s.case_file, r.sets);  // a bad path or value: the study fails
       const fs::path entry = cache_entry(cache_dir, c.resolved, r.sets);
       if (const auto cached = read_cached(entry)) {
         r.status = cached->status;
@@ -457,13 +527,13 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
       for (double v : {p.low, p.high}) {
         std::vector<std::string> sets = s.set;
         push_sets(sets, p, v);
-        (void)dem::read_case(s.root / s.case_path, sets);
+        (void)dem::read_case(s.case_file, sets);
       }
 
   if (s.dt_fraction) runner.dt_fraction = *s.dt_fraction;
   if (s.dt_fraction_base) {
-    const dem::Case base = dem::read_case(s.root / s.case_path, s.set);
-    runner.dt_fraction = base.model.numerics.dt / guard_limit(s.root / s.case_path, s.set);
+    const dem::Case base = dem::read_case(s.case_file, s.set);
+    runner.dt_fraction = base.model.numerics.dt / guard_limit(s.case_file, s.set);
   }
 
   auto make_run = [&](const std::string& method, const std::vector<double>& u) {

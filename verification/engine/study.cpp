@@ -26,6 +26,7 @@
 #include "engine/refinement_levels.hpp"
 #include "engine/run_cache.hpp"
 #include "engine/run_dispatch.hpp"
+#include "engine/study_file.hpp"
 #include "ref/registry.hpp"
 
 namespace fs = std::filesystem;
@@ -34,372 +35,8 @@ namespace ver {
 
 namespace {
 
-enum class Kind { refinement, single, stability, mode_map };
-enum class Expect { within, above, below };
-enum class Trend { none, decreasing, increasing, toward_reference };
-
-struct Variant {
-  std::string label;
-  std::vector<std::string> set;
-  std::map<std::string, double> args;
-};
-
-struct Check {
-  std::string probe, label, solver;
-  std::optional<double> value;          // fixed reference value
-  double offset = 0.0, scale = 1.0;     // reference = offset + scale × solver (e.g. a position from a displacement)
-  std::map<std::string, double> args;
-  double tolerance = 0.0;
-  bool relative = false;
-  std::string reason;
-  std::optional<double> expected_order;
-  double order_band = 0.0;
-  std::vector<std::size_t> fit_levels;
-  std::vector<std::string> only;
-  Expect expect = Expect::within;
-  bool compare_richardson = false;  // refinement: analyse without the reference, then compare the
-                                    // Richardson extrapolation (not the finest level) with it
-  Trend trend = Trend::none;        // a trend across the listed variants (in their order), no pinned value
-  bool compare_each = false;        // refinement: every level against its own reference (level args), no order
-  std::optional<double> assumed_order;  // refinement: Richardson/GCI with this order, not the observed one
-  std::uint32_t line = 0;           // of the [[check]] in the study file
-};
-
-/// A figure from the time series of runs (the finest level of each listed variant), with an
-/// optional reference curve evaluated at the same x values.
-struct Figure {
-  std::string id, title, xlabel, ylabel, x, y, solver, x_arg;
-  double x_scale = 1.0, y_scale = 1.0, ref_scale = 1.0;
-  bool y_from_start = false;  // plot y − y(0)
-  std::int64_t every = 1;     // output.every of the runs that feed it
-  std::vector<std::string> variants;
-  std::map<std::string, double> args;
-  bool logx = false, logy = false;
-  double y_offset = 0.0;            // plot (y − y_offset) × y_scale
-  bool y_minus_reference = false;   // plot y − reference at the same x (needs reference)
-  std::vector<double> x_range, y_range;  // [lo, hi] in plotted units; empty: automatic
-  // A figure of probe values across variants: x = the variant argument x_arg, y = the probe, one
-  // curve per distinct value of group_arg (or one curve), plus the reference solver if given.
-  std::string probe, group_arg, group_label;
-  std::int64_t reference_points = 0;
-  bool reference_per_variant = false;  // series figure: one reference curve per variant (its own args)  // > 1: the reference on a uniform grid of x_arg over the group's span
-  std::map<std::string, std::string> curve_labels;  // legend words per series quantity / solver
-  std::vector<std::string> solvers;  // time-series figure: every reference solver (solver = the first)
-};
-
-/// A table of probe values across variants: rows = variants (columns = the probes), or a pivot with
-/// rows = distinct values of row_arg and columns = distinct values of column_arg (one probe).
-struct TableDecl {
-  std::string title, row_arg, column_arg, row_label, column_label;
-  std::vector<std::string> probes, variants;
-  double scale = 1.0;
-};
-
-struct Study {
-  fs::path file, root;
-  std::string name, title, requirement, reference_text, case_path, parameter, parameter_label;
-  Kind kind = Kind::single;
-  std::vector<std::string> set;
-  std::vector<Variant> variants;
-  Refinement refinement;            // kind = refinement: the levels, coarse → fine (refinement_levels.hpp)
-  double low = 0.0, high = 0.0, rel_tol = 1e-4;  // stability bisection
-  std::vector<Check> checks;
-  std::vector<Figure> figures;
-  std::vector<TableDecl> tables;
-  nlohmann::json setup = nlohmann::json::object();
-  // mode_map: block shapes (columns, rows) × friction angles × slope angles
-  std::vector<std::pair<int, int>> blocks;
-  std::vector<double> phis, alphas;  // [rad]
-  double radius = 0.0, margin = 0.0, rotation_threshold = 0.0, slide_threshold = 0.0;
-  int wall_contact = 1;
-};
-
 [[noreturn]] void fail(const Study& s, const std::string& key, const std::string& what) {
   throw std::runtime_error(fmt::format("{}: {}: {}", s.file.string(), key, what));
-}
-
-/// The same, with the line of the offending node.
-[[noreturn]] void fail_at(const Study& s, const toml::node& n, const std::string& key, const std::string& what) {
-  throw std::runtime_error(fmt::format("{}:{}: {}: {}", s.file.string(), n.source().begin.line, key, what));
-}
-
-double number_or_quantity(const Study& s, const toml::node& n, const std::string& key) {
-  if (auto d = n.value<double>()) return *d;
-  if (auto str = n.value_exact<std::string>()) {
-    try {
-      return dem::parse_quantity(*str).value;
-    } catch (const std::exception& e) {
-      fail(s, key, e.what());
-    }
-  }
-  fail(s, key, "expected a number or a string with a unit");
-}
-
-std::vector<std::string> strings(const Study& s, const toml::table& t, const std::string& key) {
-  std::vector<std::string> out;
-  if (const toml::node* n = t.get(key)) {
-    const toml::array* a = n->as_array();
-    if (!a) fail(s, key, "expected an array of strings");
-    for (const auto& x : *a) {
-      auto v = x.value_exact<std::string>();
-      if (!v) fail(s, key, "expected an array of strings");
-      out.push_back(*v);
-    }
-  }
-  return out;
-}
-
-std::map<std::string, double> args_of(const Study& s, const toml::table& t, const std::string& key) {
-  std::map<std::string, double> out;
-  if (const toml::node* n = t.get(key)) {
-    const toml::table* a = n->as_table();
-    if (!a) fail(s, key, "expected a table of reference arguments, e.g. { zeta = 0.3 }");
-    for (const auto& [k, v] : *a) out[std::string(k.str())] = number_or_quantity(s, v, key + "." + std::string(k.str()));
-  }
-  return out;
-}
-
-Study read_study(const fs::path& file) {
-  Study s;
-  s.file = file;
-  s.root = fs::absolute(file).parent_path().parent_path().parent_path();  // verification/<name>/study.toml
-  toml::table root;
-  try {
-    root = toml::parse_file(file.string());
-  } catch (const toml::parse_error& e) {
-    throw std::runtime_error(fmt::format("{}:{}: syntax: {}", file.string(), e.source().begin.line, e.description()));
-  }
-  const toml::table* st = root["study"].as_table();
-  if (!st) fail(s, "study", "missing [study] table");
-  s.name = (*st)["name"].value_or(fs::absolute(file).parent_path().filename().string());
-  // The name becomes a folder under build/studies: one plain path component, nothing else.
-  if (s.name.empty() || s.name == "." || s.name == ".." ||
-      s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") != std::string::npos)
-    fail_at(s, st->get("name") ? *st->get("name") : static_cast<const toml::node&>(*st), "study.name",
-            fmt::format("expected a plain folder name (letters, digits, '_', '-', '.'), got \"{}\"", s.name));
-  s.title = (*st)["title"].value_or(s.name);
-  s.requirement = (*st)["requirement"].value_or(std::string());
-  s.reference_text = (*st)["reference"].value_or(std::string());
-  s.case_path = (*st)["case"].value_or(std::string());
-  if (s.case_path.empty()) fail(s, "study.case", "missing: the base case file");
-  const std::string kind = (*st)["kind"].value_or(std::string("single"));
-  if (kind == "refinement") s.kind = Kind::refinement;
-  else if (kind == "single") s.kind = Kind::single;
-  else if (kind == "stability") s.kind = Kind::stability;
-  else if (kind == "mode_map") s.kind = Kind::mode_map;
-  else fail(s, "study.kind", fmt::format("expected refinement, single, stability or mode_map, got \"{}\"", kind));
-  s.set = strings(s, *st, "set");
-  if (const toml::table* su = (*st)["setup"].as_table()) {
-    for (const auto& [k, v] : *su) {
-      if (auto x = v.value<double>()) s.setup[std::string(k.str())] = *x;
-      else if (auto y = v.value_exact<std::string>()) s.setup[std::string(k.str())] = *y;
-    }
-  }
-  if (root.get("variant") && !root["variant"].as_array())
-    fail_at(s, *root.get("variant"), "variant", "expected [[variant]] tables");
-  if (const toml::array* va = root["variant"].as_array()) {
-    for (const auto& n : *va) {
-      const toml::table* t = n.as_table();
-      if (!t) fail_at(s, n, "variant", "expected [[variant]] tables");
-      Variant v;
-      v.label = (*t)["label"].value_or(std::string());
-      v.set = strings(s, *t, "set");
-      v.args = args_of(s, *t, "args");
-      s.variants.push_back(v);
-    }
-  }
-  if (s.variants.empty()) s.variants.push_back({});
-  if (s.kind == Kind::refinement) {
-    s.refinement = read_refinement(root, file.string());
-    s.parameter = s.refinement.parameter;
-    s.parameter_label = s.refinement.label;
-  } else {
-    refuse_levels(root, file.string());
-  }
-  if (s.kind == Kind::stability) {
-    const toml::table* r = root["stability"].as_table();
-    if (!r) fail(s, "stability", "missing [stability] table for kind = \"stability\"");
-    s.parameter = (*r)["parameter"].value_or(std::string("numerics.dt"));
-    s.parameter_label = (*r)["label"].value_or(s.parameter);
-    if (!r->get("low") || !r->get("high")) fail(s, "stability", "need low (stable) and high (unstable) bounds");
-    s.low = number_or_quantity(s, *r->get("low"), "stability.low");
-    s.high = number_or_quantity(s, *r->get("high"), "stability.high");
-    s.rel_tol = (*r)["rel_tol"].value_or(1e-4);
-    if (!(s.low > 0.0 && s.high > s.low)) fail(s, "stability", "need 0 < low < high");
-  }
-  if (s.kind == Kind::mode_map) {
-    const toml::table* r = root["mode_map"].as_table();
-    if (!r) fail(s, "mode_map", "missing [mode_map] table for kind = \"mode_map\"");
-    if (const toml::array* b = (*r)["blocks"].as_array())
-      for (const auto& x : *b) {
-        const toml::array* pair = x.as_array();
-        if (!pair || pair->size() != 2) fail(s, "mode_map.blocks", "expected [[columns, rows], ...]");
-        s.blocks.emplace_back(static_cast<int>(pair->get(0)->value_or(int64_t{1})), static_cast<int>(pair->get(1)->value_or(int64_t{1})));
-      }
-    auto angles = [&](const char* key, std::vector<double>& out) {
-      if (const toml::array* a = (*r)[key].as_array())
-        for (const auto& x : *a) out.push_back(x.value_or(0.0) * std::numbers::pi / 180.0);
-      if (out.empty()) fail(s, fmt::format("mode_map.{}", key), "expected a list of angles in degrees");
-    };
-    angles("phis_deg", s.phis);
-    angles("alphas_deg", s.alphas);
-    s.radius = (*r)["radius"].value_or(0.0);
-    s.margin = (*r)["margin_deg"].value_or(1.0) * std::numbers::pi / 180.0;
-    s.rotation_threshold = (*r)["rotation_threshold"].value_or(2e-3);
-    s.slide_threshold = (*r)["slide_threshold"].value_or(1e-4);
-    s.wall_contact = static_cast<int>((*r)["wall_contact"].value_or(int64_t{1}));
-    if (s.blocks.empty() || !(s.radius > 0.0)) fail(s, "mode_map", "need blocks and radius");
-  }
-  if (root.get("check") && !root["check"].as_array())
-    fail_at(s, *root.get("check"), "check", "expected [[check]] tables");
-  const toml::array* ca = root["check"].as_array();
-  if (!ca || ca->empty()) fail(s, "check", "missing: at least one [[check]]");
-  for (const auto& n : *ca) {
-    const toml::table* t = n.as_table();
-    if (!t) fail_at(s, n, "check", "expected [[check]] tables (a table per check), got a value");
-    Check c;
-    c.line = n.source().begin.line;
-    c.probe = (*t)["probe"].value_or(std::string(s.kind == Kind::stability ? "limit" : s.kind == Kind::mode_map ? "mismatches" : ""));
-    if (c.probe.empty()) fail(s, "check.probe", "missing: the probe of the case to check");
-    c.label = (*t)["label"].value_or(c.probe);
-    c.solver = (*t)["reference"].value_or(std::string());
-    if (const toml::node* v = t->get("value")) c.value = number_or_quantity(s, *v, "check.value");
-    const std::string trend = (*t)["trend"].value_or(std::string());
-    if (!trend.empty()) {
-      if (trend == "decreasing") c.trend = Trend::decreasing;
-      else if (trend == "increasing") c.trend = Trend::increasing;
-      else if (trend == "toward_reference") c.trend = Trend::toward_reference;
-      else fail_at(s, n, "check.trend", fmt::format("expected decreasing, increasing or toward_reference, got \"{}\"", trend));
-      if (s.kind != Kind::single && s.kind != Kind::refinement)
-        fail_at(s, n, "check.trend", "a trend check needs kind = \"single\" or \"refinement\"");
-    }
-    if (c.solver.empty() && !c.value && s.kind != Kind::refinement && (c.trend == Trend::none || c.trend == Trend::toward_reference))
-      fail(s, "check.reference", fmt::format("check \"{}\": give a reference solver or a value", c.label));
-    c.args = args_of(s, *t, "args");
-    if (const toml::node* o = t->get("reference_offset")) c.offset = number_or_quantity(s, *o, "check.reference_offset");
-    if (const toml::node* o = t->get("reference_scale")) c.scale = number_or_quantity(s, *o, "check.reference_scale");
-    if (!t->get("tolerance")) fail(s, "check.tolerance", fmt::format("check \"{}\": missing tolerance", c.label));
-    c.tolerance = number_or_quantity(s, *t->get("tolerance"), "check.tolerance");
-    c.relative = (*t)["error"].value_or(std::string("abs")) == "rel";
-    c.reason = (*t)["reason"].value_or(std::string());
-    if (c.reason.empty()) fail(s, "check.reason", fmt::format("check \"{}\": every tolerance needs a one-line reason", c.label));
-    if (auto p = (*t)["expected_order"].value<double>()) {
-      c.expected_order = *p;
-      c.order_band = (*t)["order_band"].value_or(0.2);
-    }
-    if (const toml::array* fl = (*t)["fit_levels"].as_array())
-      for (const auto& x : *fl) c.fit_levels.push_back(static_cast<std::size_t>(x.value_or(int64_t{0})));
-    c.only = strings(s, *t, "variants");
-    const std::string ex = (*t)["expect"].value_or(std::string("within"));
-    c.expect = ex == "above" ? Expect::above : ex == "below" ? Expect::below : Expect::within;
-    const std::string cmp = (*t)["compare"].value_or(std::string("finest"));
-    if (cmp != "finest" && cmp != "richardson" && cmp != "each")
-      fail_at(s, *t->get("compare"), "check.compare", fmt::format("expected \"finest\", \"richardson\" or \"each\", got \"{}\"", cmp));
-    c.compare_richardson = cmp == "richardson";
-    c.compare_each = cmp == "each";
-    if ((c.compare_richardson || c.compare_each) && s.kind != Kind::refinement)
-      fail_at(s, *t->get("compare"), "check.compare", fmt::format("compare = \"{}\" needs kind = \"refinement\"", cmp));
-    if (c.compare_each && (c.expected_order || c.trend != Trend::none))
-      fail_at(s, *t->get("compare"), "check.compare", "compare = \"each\" checks values, not an order or a trend: remove expected_order / trend");
-    if (c.compare_each && c.solver.empty() && !c.value)
-      fail_at(s, *t->get("compare"), "check.compare", "compare = \"each\" needs a reference solver or a value");
-    if (const toml::node* ao = t->get("assumed_order")) {
-      const auto p = ao->value<double>();
-      if (!p || !(*p > 0.0)) fail_at(s, *ao, "check.assumed_order", "expected a positive number (the order Richardson uses)");
-      if (s.kind != Kind::refinement) fail_at(s, *ao, "check.assumed_order", "needs kind = \"refinement\"");
-      c.assumed_order = *p;
-    }
-    s.checks.push_back(c);
-  }
-  if (root.get("figure") && !root["figure"].as_array())
-    fail_at(s, *root.get("figure"), "figure", "expected [[figure]] tables");
-  if (const toml::array* fa = root["figure"].as_array()) {
-    for (const auto& n : *fa) {
-      const toml::table* t = n.as_table();
-      if (!t) fail_at(s, n, "figure", "expected [[figure]] tables");
-      Figure f;
-      f.id = (*t)["id"].value_or(fmt::format("figure{}", s.figures.size()));
-      f.title = (*t)["title"].value_or(f.id);
-      f.x = (*t)["x"].value_or(std::string("t"));
-      f.y = (*t)["y"].value_or(std::string());
-      if (f.y.empty() && !t->get("probe")) fail_at(s, n, "figure.y", "missing: the series quantity to plot (or probe = a probe across variants)");
-      f.xlabel = (*t)["xlabel"].value_or(f.x);
-      f.ylabel = (*t)["ylabel"].value_or(f.y);
-      f.x_scale = (*t)["x_scale"].value_or(1.0);
-      f.y_scale = (*t)["y_scale"].value_or(1.0);
-      f.ref_scale = (*t)["reference_scale"].value_or(1.0);
-      f.y_from_start = (*t)["y_from_start"].value_or(false);
-      f.every = (*t)["every"].value_or(int64_t{100});
-      // reference = "solver" or, for a time-series figure, ["solver", "another solver", ...]
-      if (const toml::node* rn = t->get("reference")) {
-        if (auto one = rn->value_exact<std::string>()) {
-          f.solvers.push_back(*one);
-        } else if (const toml::array* ra = rn->as_array(); ra && !ra->empty()) {
-          for (const auto& x : *ra) {
-            auto name = x.value_exact<std::string>();
-            if (!name || name->empty()) fail_at(s, x, "figure.reference", "expected a solver name or an array of solver names");
-            f.solvers.push_back(*name);
-          }
-        } else {
-          fail_at(s, *rn, "figure.reference", "expected a solver name or an array of solver names");
-        }
-        if (f.solvers.size() > 1 && (t->get("probe") || (*t)["y_minus_reference"].value_or(false)))
-          fail_at(s, *rn, "figure.reference", "several references need a time-series figure without y_minus_reference");
-        f.solver = f.solvers.front();
-      }
-      f.x_arg = (*t)["x_arg"].value_or(std::string("t"));
-      f.args = args_of(s, *t, "args");
-      f.variants = strings(s, *t, "variants");
-      f.logx = (*t)["logx"].value_or(false);
-      f.logy = (*t)["logy"].value_or(false);
-      f.y_offset = (*t)["y_offset"].value_or(0.0);
-      f.y_minus_reference = (*t)["y_minus_reference"].value_or(false);
-      if (f.y_minus_reference && f.solver.empty()) fail_at(s, n, "figure.y_minus_reference", "needs a reference solver");
-      f.probe = (*t)["probe"].value_or(std::string());
-      f.group_arg = (*t)["group_arg"].value_or(std::string());
-      f.group_label = (*t)["group_label"].value_or(f.group_arg);
-      f.reference_points = (*t)["reference_points"].value_or(int64_t{0});
-      f.reference_per_variant = (*t)["reference_per_variant"].value_or(false);
-      if (!f.probe.empty() && f.x_arg == "t") fail_at(s, n, "figure.x_arg", "a probe figure needs x_arg: the variant argument on x");
-      for (const char* key : {"x_range", "y_range"}) {
-        if (const toml::node* r = t->get(key)) {
-          const toml::array* a = r->as_array();
-          if (!a || a->size() != 2) fail_at(s, *r, fmt::format("figure.{}", key), "expected [lo, hi]");
-          std::vector<double>& out = std::string(key) == "x_range" ? f.x_range : f.y_range;
-          for (const auto& x : *a) out.push_back(number_or_quantity(s, x, fmt::format("figure.{}", key)));
-          if (!(out[0] < out[1])) fail_at(s, *r, fmt::format("figure.{}", key), "expected lo < hi");
-        }
-      }
-      if (const toml::table* cl = (*t)["labels"].as_table())
-        for (const auto& [k, v] : *cl) f.curve_labels[std::string(k.str())] = v.value_or(std::string(k.str()));
-      s.figures.push_back(f);
-    }
-  }
-  if (root.get("table") && !root["table"].as_array())
-    fail_at(s, *root.get("table"), "table", "expected [[table]] tables");
-  if (const toml::array* ta = root["table"].as_array()) {
-    if (s.kind == Kind::mode_map) fail(s, "table", "declared tables need kind = single, refinement or stability");
-    for (const auto& n : *ta) {
-      const toml::table* t = n.as_table();
-      if (!t) fail_at(s, n, "table", "expected [[table]] tables");
-      TableDecl d;
-      d.title = (*t)["title"].value_or(std::string());
-      d.probes = strings(s, *t, "probes");
-      if (auto p = (*t)["probe"].value<std::string>()) d.probes.insert(d.probes.begin(), *p);
-      if (d.probes.empty()) fail_at(s, n, "table.probe", "missing: the probe(s) to tabulate (or element_steps_per_second)");
-      d.row_arg = (*t)["row_arg"].value_or(std::string());
-      d.column_arg = (*t)["column_arg"].value_or(std::string());
-      d.row_label = (*t)["row_label"].value_or(d.row_arg);
-      d.column_label = (*t)["column_label"].value_or(d.column_arg);
-      if (d.row_arg.empty() != d.column_arg.empty()) fail_at(s, n, "table", "give both row_arg and column_arg (a pivot) or neither");
-      if (!d.row_arg.empty() && d.probes.size() != 1) fail_at(s, n, "table.probe", "a pivot table shows one probe");
-      d.scale = (*t)["scale"].value_or(1.0);
-      d.variants = strings(s, *t, "variants");
-      if (d.title.empty()) d.title = d.probes.front();
-      s.tables.push_back(d);
-    }
-  }
-  return s;
 }
 
 /// One run of the base case with overrides; returns its probes (empty on a blow-up) and status.
@@ -434,9 +71,9 @@ std::vector<RunOut> run_many(const Study& s, const std::vector<Planned>& plan, i
   std::vector<std::size_t> slot;
   std::vector<fs::path> entries;
   std::vector<std::string> case_paths;
-  const fs::path case_file = fs::absolute(s.root / s.case_path);
+  const fs::path case_file = fs::absolute(s.case_file);
   for (std::size_t k = 0; k < plan.size(); ++k) {
-    const dem::Case c = dem::read_case(s.root / s.case_path, plan[k].sets);
+    const dem::Case c = dem::read_case(s.case_file, plan[k].sets);
     fs::path entry;
     if (g_cache && !g_cache->dir.empty()) {
       entry = cache_entry(g_cache->dir, c.resolved, plan[k].sets, plan[k].out);
@@ -519,12 +156,6 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
           else if (args.count(a.name)) use[a.name] = args[a.name];
         }
     return c.offset + c.scale * ref::evaluate(c.solver, use);
-  };
-  auto applies = [](const Check& c, const Variant& v) {
-    if (c.only.empty()) return true;
-    for (const auto& o : c.only)
-      if (o == v.label) return true;
-    return false;
   };
   auto add_check = [&](const std::string& quantity, std::optional<double> reference, std::optional<double> dem,
                        const Check& c, std::optional<double> order, const std::string& note) {
@@ -1139,7 +770,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   prov["overrides"] = s.set;
   nlohmann::json result = {
       {"study", s.name}, {"title", s.title}, {"requirement", s.requirement},
-      {"kind", s.kind == Kind::refinement ? "refinement" : s.kind == Kind::single ? "single" : s.kind == Kind::stability ? "stability" : "mode_map"},
+      {"kind", kind_word(s.kind)},
       {"case", s.case_path}, {"parameter", s.parameter}, {"reference", s.reference_text}, {"setup", setup},
       {"provenance", prov}, {"passed", passed}, {"checks", checks}, {"series", series_json},
       {"figures", figures}, {"tables", s_tables}};

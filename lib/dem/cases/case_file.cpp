@@ -498,14 +498,7 @@ ProbeKind probe_kind(const std::string& s) {
 
 Case read_case(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
   const std::string file = path.string();
-  toml::table root;
-  try {
-    root = toml::parse_file(file);
-  } catch (const toml::parse_error& e) {
-    throw CaseError(fmt::format("{}:{}: syntax: {}", file, e.source().begin.line, e.description()));
-  } catch (const std::exception& e) {
-    throw CaseError(fmt::format("{}: cannot read: {}", file, e.what()));
-  }
+  toml::table root = parse_toml_file(path);
   for (const auto& kv : overrides) apply_override(root, kv);
 
   Case c;

@@ -1,6 +1,8 @@
 #include "dem/cases/case_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <fmt/format.h>
 
 namespace dem {
@@ -12,13 +14,22 @@ std::string where(const toml::node& n, const std::string& fallback_file) {
   return fmt::format("{}:{}", file, src.begin.line);
 }
 
-TableReader::TableReader(const toml::table& t, std::string path, std::string file)
-    : t_(t), path_(std::move(path)), file_(std::move(file)) {}
+TableReader::TableReader(const toml::table& t, std::string path, std::string file, std::string help)
+    : t_(t), path_(std::move(path)), file_(std::move(file)), help_(std::move(help)) {}
+
+void TableReader::fail_at(const toml::node& n, const std::string& key, const std::string& what) const {
+  throw CaseError(fmt::format("{}: {}: {}", where(n, file_), key_path(key), what));
+}
 
 void TableReader::fail(const std::string& key, const std::string& what) const {
   const toml::node* n = t_.get(key);
   const std::string loc = n ? where(*n, file_) : where(t_, file_);
-  throw CaseError(fmt::format("{}: {}: {}", loc, key_path(key), what));
+  std::string hint;  // a key that is missing may be there, misspelled
+  if (!n)
+    for (const auto& [k, v] : t_)
+      if (const std::string other(k.str()); !used_.count(other) && !nearest_word(other, {key}).empty())
+        hint = fmt::format(" (is '{}', line {}, a misspelling of '{}'?)", other, v.source().begin.line, key);
+  throw CaseError(fmt::format("{}: {}: {}{}", loc, key_path(key), what, hint));
 }
 
 void TableReader::fail_here(const std::string& what) const {
@@ -120,6 +131,54 @@ double TableReader::number(const std::string& key, double fallback) const {
   return t_.contains(key) ? number(key) : fallback;
 }
 
+double TableReader::number_in(const std::string& key, double lo, double hi, double fallback, bool open_lo,
+                              bool open_hi) const {
+  used_.insert(key);
+  if (!t_.contains(key)) return fallback;
+  const double v = number(key);
+  if (v < lo || v > hi || (open_lo && v == lo) || (open_hi && v == hi))
+    fail(key, fmt::format("expected a number in {}{:g}, {:g}{}, got {:g}", open_lo ? "(" : "[", lo, hi, open_hi ? ")" : "]", v));
+  return v;
+}
+
+Quantity TableReader::any_quantity_of(const toml::node& n, const std::string& key) const {
+  Quantity q;
+  if (auto s = n.value_exact<std::string>()) {
+    try {
+      q = parse_quantity(*s);
+    } catch (const UnitError& e) {
+      fail_at(n, key, e.what());
+    }
+  } else if (auto d = n.value<double>()) {
+    q.value = *d;
+    q.dim = dims::dimensionless;
+  } else {
+    fail_at(n, key, "expected a number or a string with a unit");
+  }
+  if (!std::isfinite(q.value)) fail_at(n, key, fmt::format("expected a finite number, got {}", q.value));
+  return q;
+}
+
+Quantity TableReader::any_quantity(const std::string& key) const { return any_quantity_of(need(key), key); }
+
+std::optional<Quantity> TableReader::optional_any_quantity(const std::string& key) const {
+  used_.insert(key);
+  const toml::node* n = t_.get(key);
+  if (!n) return std::nullopt;
+  return any_quantity_of(*n, key);
+}
+
+std::map<std::string, double> TableReader::quantity_table(const std::string& key) const {
+  std::map<std::string, double> out;
+  used_.insert(key);
+  const toml::node* n = t_.get(key);
+  if (!n) return out;
+  const toml::table* a = n->as_table();
+  if (!a) fail(key, "expected a table of numbers, e.g. { zeta = 0.3 }");
+  for (const auto& [k, v] : *a) out[std::string(k.str())] = any_quantity_of(v, key + "." + std::string(k.str())).value;
+  return out;
+}
+
 std::int64_t TableReader::integer(const std::string& key, std::int64_t lo, std::int64_t hi) const {
   const toml::node& n = need(key);
   auto v = n.value_exact<std::int64_t>();
@@ -157,7 +216,9 @@ std::string TableReader::choice(const std::string& key, const std::vector<std::s
   const std::string v = fallback.empty() ? string(key) : string(key, fallback);
   for (const auto& a : allowed)
     if (a == v) return v;
-  fail(key, fmt::format("expected one of \"{}\", got \"{}\"", fmt::join(allowed, "\", \""), v));
+  const std::string near = nearest_word(v, allowed);
+  fail(key, fmt::format("expected one of \"{}\", got \"{}\"{}", fmt::join(allowed, "\", \""), v,
+                        near.empty() ? "" : fmt::format("; did you mean \"{}\"?", near)));
 }
 
 std::vector<std::string> TableReader::strings(const std::string& key) const {
@@ -186,7 +247,50 @@ const toml::table* TableReader::table(const std::string& key) const {
 void TableReader::finish() const {
   for (const auto& [k, v] : t_) {
     const std::string key(k.str());
-    if (!used_.count(key)) fail(key, "unknown key (a typo? see cases/README.md for the keys of this table)");
+    if (used_.count(key)) continue;
+    std::vector<std::string> candidates(used_.begin(), used_.end());
+    candidates.insert(candidates.end(), known_.begin(), known_.end());
+    const std::string near = nearest_word(key, candidates);
+    if (!near.empty()) fail(key, fmt::format("unknown key; did you mean '{}'? (see {})", near, help_));
+    fail(key, fmt::format("unknown key (a typo? see {} for the keys of this table)", help_));
+  }
+}
+
+std::string nearest_word(const std::string& word, const std::vector<std::string>& known) {
+  // Levenshtein distance with a transposition counted as one edit (optimal string alignment).
+  auto distance = [](const std::string& a, const std::string& b) {
+    std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+    for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i)
+      for (std::size_t j = 1; j <= b.size(); ++j) {
+        const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+        d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+        if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      }
+    return d[a.size()][b.size()];
+  };
+  std::string best;
+  std::size_t best_d = std::max<std::size_t>(2, word.size() / 3) + 1;
+  for (const auto& k : known)
+    if (const std::size_t dk = distance(word, k); dk < best_d) {
+      best = k;
+      best_d = dk;
+    }
+  return best;
+}
+
+toml::table parse_toml_file(const std::filesystem::path& path, const std::string& from) {
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw CaseError(fmt::format("file not found: {}{}", file, from.empty() ? "" : " (from " + from + ")"));
+  try {
+    return toml::parse_file(file);
+  } catch (const toml::parse_error& e) {
+    throw CaseError(fmt::format("{}:{}: syntax: {}", file, e.source().begin.line, e.description()));
+  } catch (const std::exception& e) {
+    throw CaseError(fmt::format("{}: cannot read: {}", file, e.what()));
   }
 }
 
