@@ -150,7 +150,7 @@ struct Reader {
 
   /// kn_from_elastic = { E = "750 kgf/cm^2", nu = 0.3, q = "0.068 kgf/cm", radius = "1 cm", c = 1.5,
   /// factor = 1 }: Kiyama's K_n per unit thickness [Pa] from the 2D elastic contact of two equal
-  /// cylinders (K22b, K23), times `factor` (Kiyama's walls: 2).
+  /// cylinders (K22.b, K23), times `factor` (Kiyama's walls: 2).
   double kn_from_elastic(const TableReader& t) {
     const double e = t.quantity("E", dims::pressure);
     positive(t, "E", e);
@@ -163,7 +163,7 @@ struct Reader {
     const double cc = t.number("c", 1.5);
     const double factor = t.number("factor", 1.0);
     positive(t, "factor", factor);
-    const double kn = factor * hertz_2d_stiffness(e, nu, radius, q, cc);  // (K22b, K23)
+    const double kn = factor * hertz_2d_stiffness(e, nu, radius, q, cc);  // (K22.b, K23)
     if (!(kn > 0.0) || !std::isfinite(kn))
       t.fail("c", fmt::format("K23 gives no positive stiffness (c + 2 ln(4r/b) <= 0): {:.6g} Pa", kn));
     t.finish();
