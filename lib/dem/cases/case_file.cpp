@@ -189,7 +189,7 @@ struct Reader {
     const std::string kind = r.choice("law", {"linear", "face"}, "linear");
     law.kind = kind == "linear" ? LawKind::linear : LawKind::face;
     const double l = m.thickness;
-    // friction
+    // friction: μ = tan φ (K28), also the tan φ of the face law's Mohr–Coulomb strength (M11)
     if (r.has("friction") && r.has("friction_angle")) r.fail("friction", "give either friction or friction_angle");
     double mu = r.has("friction_angle") ? std::tan(r.quantity("friction_angle", dims::angle)) : r.number("friction", 0.0);
     if (r.has("friction_angle")) {
@@ -237,7 +237,7 @@ struct Reader {
           auto [es, ds] = r.quantity_either("eta_s", dims::damping, dims::damping_per_thickness);
           law.eta_s = ds == dims::damping ? es : es * l;
         } else {
-          law.eta_s = law.eta_n * std::sqrt(law.linear.ks / law.linear.kn);  // (K25)
+          law.eta_s = law.eta_n * std::sqrt(law.linear.ks / law.linear.kn);  // (K25.b): η_s = η_n √s
         }
       }
     } else {
@@ -257,7 +257,8 @@ struct Reader {
       f.tan_phi = mu;
       f.healing = r.boolean("healing", false);
       law.bond_at_start = r.boolean("bonded", false);
-      // springs: discrete per segment (N/m) or moduli per unit area per unit strain (Pa), (M6)
+      // springs: discrete per segment (N/m, M6.1, M6.2) or moduli k_n, k_s per unit area per unit strain
+      // (Pa, M4, M5) that the face constants turn into K_n, K_s (M6.3, M6.4)
       if (r.has("kn") == r.has("kn_modulus")) r.fail_here("give exactly one of kn (per segment, N/m) or kn_modulus (Pa)");
       law.face_modulus = r.has("kn_modulus");
       law.face_kn = law.face_modulus ? r.quantity("kn_modulus", dims::pressure) : r.quantity("kn", dims::stiffness);
