@@ -25,7 +25,9 @@ Words used below:
 Faults reported:
 
 (a) a file of the code (lib/, app/, reference/, reports/, verification/engine/) cites a label that
-    docs/model.md does not define;
+    docs/model.md does not define; the same for the other files that cite labels (docs/ but model.md
+    itself, cases/, verification/, bench/, scripts/; tests/ is left out: its tests plant labels that
+    do not exist, K99, M27);
 (b) a code site of a table does not exist, or does not contain one of its row's labels (a group label
     K19 is found as K19 or any K19.x; a sub-label only as itself; for a folder or a glob, in at least one
     of its files);
@@ -41,6 +43,7 @@ import tempfile
 from pathlib import Path
 
 CODE_DIRS = ["lib", "app", "reference", "reports", "verification/engine"]
+CITING_DIRS = ["docs", "cases", "verification", "bench", "scripts"]  # verification/engine: counted once
 SPELLING_DIRS = ["lib", "app", "reference", "reports", "verification", "tests", "cases", "docs", "bench",
                  "scripts", "fuzz", "cmake"]
 SPELLING_FILES = ["README.md", "CMakeLists.txt"]
@@ -158,6 +161,13 @@ def check(root, skip=()):
             n_cited += 1
             if label not in defined:
                 faults.append(f"{rel}:{n}: (a) cites {label}, which {MODEL} does not define")
+    for p in text_files(root, CITING_DIRS):
+        rel = p.relative_to(root).as_posix()
+        if rel == MODEL or rel.startswith("verification/engine/"):
+            continue
+        for n, label in cited(read(p)):
+            if label not in defined:
+                faults.append(f"{rel}:{n}: (a) cites {label}, which {MODEL} does not define")
     if n_cited == 0:
         faults.append(f"(d) no label cited in {', '.join(CODE_DIRS)}")
 
@@ -205,6 +215,7 @@ def self_test():
         "clean": ({}, None),
         "undefined label in code": ({"lib/law.hpp": law + "// (K10)\n"}, "(a)"),
         "undefined sub-label in code": ({"lib/law.hpp": law + "// (K6.c)\n"}, "(a)"),
+        "undefined label in another doc": ({"docs/findings.md": "see (M27)\n"}, "(a)"),
         "site lacks its label": ({"lib/law.hpp": "// (K6.a) (K6.b)\n"}, "(b)"),
         "folder site lacks its label": ({"lib/core/a.hpp": "// (K16) (K18)\n"}, "(b)"),
         "site missing": ({"docs/model.md": model.replace("lib/law.hpp", "lib/gone.hpp")}, "(b)"),
