@@ -29,7 +29,7 @@ double contact_half_width(const CylinderContact& contact) {
   const double reduced_radius =
       contact.radius1 * contact.radius2 / (contact.radius1 + contact.radius2);
   return std::sqrt(8.0 / std::numbers::pi * reduced_radius * (1.0 - nu * nu) /
-                   contact.youngs_modulus * contact.line_load);  // (K22b)
+                   contact.youngs_modulus * contact.line_load);  // (K22.b)
 }
 
 double cylinder_approach(const CylinderContact& contact) {
@@ -43,7 +43,7 @@ double cylinder_approach(const CylinderContact& contact) {
     detail::fail(where, "c + ln(4 r1/b) + ln(4 r2/b) must be > 0 (load too large for the model)",
                  bracket);
   return 2.0 * (1.0 - nu * nu) / std::numbers::pi * contact.line_load / contact.youngs_modulus *
-         bracket;  // (K22a)
+         bracket;  // (K22.a)
 }
 
 double contact_stiffness(const CylinderContact& contact) {

@@ -125,7 +125,7 @@ double damping_coefficient(double mass, double stiffness, double damping_ratio) 
 }
 
 double critical_damping(double mass, double stiffness) {
-  return damping_coefficient(mass, stiffness, 1.0);  // (K20), (K25a)
+  return damping_coefficient(mass, stiffness, 1.0);  // (K20), (K25.a)
 }
 
 double damping_ratio_for_restitution(double restitution) {

@@ -269,7 +269,7 @@ const std::vector<Entry>& table() {
          {"nu", "1", "Poisson's ratio"},
          {"r", "m", "radius of both cylinders"},
          {"q", "N/m", "line load"},
-         {"c", "1", "approach constant: 1.5 (K23) or 2/3 (K22a)"}},
+         {"c", "1", "approach constant: 1.5 (K23) or 2/3 (K22.a)"}},
         "Pa"},
        [](const Args& a) {
          return contact_stiffness({.youngs_modulus = a("E"),

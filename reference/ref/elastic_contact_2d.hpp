@@ -5,7 +5,7 @@
 
 namespace ref {
 
-// The constant in the approach bracket (c + ln(4 r1/b) + ln(4 r2/b)). refs §5.1: K22a prints 2/3,
+// The constant in the approach bracket (c + ln(4 r1/b) + ln(4 r2/b)). refs §5.1: K22.a prints 2/3,
 // K23 prints 1.5; they disagree. 1.5 with q = 0.068 kgf/cm reproduces Kiyama's Table 1.
 inline constexpr double kiyama_constant_K23 = 1.5;
 inline constexpr double kiyama_constant_K22a = 2.0 / 3.0;
@@ -19,11 +19,11 @@ struct CylinderContact {
   double approach_constant = kiyama_constant_K23;  // c, dimensionless
 };
 
-// Half-width b of the contact strip (K22b): b^2 = (8/pi) (r1 r2/(r1 + r2)) ((1 - nu^2)/E) q.
+// Half-width b of the contact strip (K22.b): b^2 = (8/pi) (r1 r2/(r1 + r2)) ((1 - nu^2)/E) q.
 // Accuracy: a few ulp.
 double contact_half_width(const CylinderContact& contact);
 
-// Approach of the centres (K22a with constant c): delta = (2(1 - nu^2)/pi)(q/E)(c + ln(4 r1/b) +
+// Approach of the centres (K22.a with constant c): delta = (2(1 - nu^2)/pi)(q/E)(c + ln(4 r1/b) +
 // ln(4 r2/b)). Throws if the bracket is not positive (b > 4r: a load far outside the model's
 // range). Accuracy: a few ulp.
 double cylinder_approach(const CylinderContact& contact);

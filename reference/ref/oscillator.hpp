@@ -51,7 +51,7 @@ OscillatorState oscillator_state_odeint(const Oscillator& oscillator, Oscillator
 // eta = 2 zeta sqrt(m K) (refs conventions); zeta >= 0. Exact up to rounding.
 double damping_coefficient(double mass, double stiffness, double damping_ratio);
 
-// Critical damping eta = 2 sqrt(m K) (K20, K25a). Exact up to rounding.
+// Critical damping eta = 2 sqrt(m K) (K20, K25.a). Exact up to rounding.
 double critical_damping(double mass, double stiffness);
 
 // Convention-A inverse (refs §1.2): zeta = -ln e / sqrt(pi^2 + ln^2 e) for 0 <= e <= 1; e = 0 gives

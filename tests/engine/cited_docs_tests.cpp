@@ -22,6 +22,11 @@ TEST_CASE("The repository's docs render with an anchor per section, equation lab
   CHECK(report::citation_anchor(d, "K19") == "doc-model-K19");
   CHECK(report::citation_anchor(d, "K22.a") != "");
   CHECK(report::citation_anchor(d, "M15.1") == "doc-model-M15-1");
+  // sub-equations are written with a dot (docs/model.md): the shear spring's K10.a has its own anchor
+  CHECK(report::citation_anchor(d, "K6.a") == "doc-model-K6-a");
+  CHECK(report::citation_anchor(d, "K10.a") == "doc-model-K10-a");
+  // the label → code tables render, a glob in code as written
+  CHECK(d.html.find("<td><code>lib/dem/contact/face_contact*</code></td>") != std::string::npos);
   CHECK(report::citation_anchor(d, "F F1") == "doc-findings-F1");
   CHECK(report::citation_anchor(d, "F K-3") == "doc-findings-K-3");
   CHECK(report::citation_anchor(d, "doc findings") == "doc-findings");
@@ -45,7 +50,7 @@ TEST_CASE("The repository's docs render with an anchor per section, equation lab
 TEST_CASE("Citations in text are linked, not inside tags, links, figures or unknown labels", "[report][docs]") {
   const auto& d = real_docs();
   const std::string page =
-      "<p>tolerance from refs §1.6 and (K19); M15.1 linearised; see findings F2 and docs/findings.md.</p>"
+      "<p>tolerance from refs §1.6 and (K19); M15.1 linearised; shear spring (K10.a); see findings F2 and docs/findings.md.</p>"
       "<p>closed forms of docs/references.md §1.2</p>"
       "<p title=\"refs §1.6\">K99 and M27 are no labels; M-A is a case</p>"
       "<svg><text>K19</text></svg><a href=\"x\">refs §2</a>";
@@ -53,6 +58,7 @@ TEST_CASE("Citations in text are linked, not inside tags, links, figures or unkn
   CHECK(out.find("<a class=\"cite\" href=\"#doc-references-1-6\">refs §1.6</a>") != std::string::npos);
   CHECK(out.find("(<a class=\"cite\" href=\"#doc-model-K19\">K19</a>)") != std::string::npos);
   CHECK(out.find("<a class=\"cite\" href=\"#doc-model-M15-1\">M15.1</a>") != std::string::npos);
+  CHECK(out.find("(<a class=\"cite\" href=\"#doc-model-K10-a\">K10.a</a>)") != std::string::npos);
   CHECK(out.find("href=\"#doc-findings-F2\">findings F2</a>") != std::string::npos);
   CHECK(out.find("href=\"#doc-findings\">docs/findings.md</a>") != std::string::npos);
   CHECK(out.find("href=\"#doc-references-1-2\">docs/references.md §1.2</a>") != std::string::npos);

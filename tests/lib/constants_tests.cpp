@@ -25,7 +25,7 @@ TEST_CASE("K23 reproduces the first column of Kiyama's Table 1", "[constants]") 
   CHECK_THAT(eta / rho_g * 100.0, WithinRel(21.6, 3e-3));
   // Δt < η_n/K_n = 5.94e-4 s (K26).
   CHECK_THAT(eta / kn, WithinRel(5.94e-4, 2e-3));
-  // K22a's constant 2/3 gives a stiffer contact than K23's 1.5 (docs/references.md §5.1: 6.6 % at E = 750).
+  // K22.a's constant 2/3 gives a stiffer contact than K23's 1.5 (docs/references.md §5.1: 6.6 % at E = 750).
   CHECK(dem::hertz_2d_stiffness(e, 0.3, r, q, 2.0 / 3.0) > kn);
 }
 

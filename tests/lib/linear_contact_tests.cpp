@@ -29,7 +29,7 @@ dem::LinearSpringDashpot law(double mu, dem::EndRule rule = dem::EndRule::elasti
 
 }  // namespace
 
-TEST_CASE("linear contact: elastic forces accumulate the increments (K6a, K7a), the dashpot does not (K6b, K7b)",
+TEST_CASE("linear contact: elastic forces accumulate the increments (K6.a, K7.a, K10.a, K11.a), the dashpot does not (K6.b, K7.b, K10.b, K11.b)",
           "[contact]") {
   const auto l = law(10.0);  // μ large: never slides here
   dem::LinearContactHistory h;

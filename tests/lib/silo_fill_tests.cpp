@@ -63,7 +63,7 @@ TEST_CASE("kn_from_elastic reproduces Table 1 of Kiyama (K_n over rho g = 3.637e
     const dem::Case ck = dem::read_case(path, {std::string("contact.0.kn_from_elastic.E=") + es[k]});
     CHECK_THAT(ck.model.laws[0].linear.kn / kRhoG * 100.0, WithinRel(want[k], 1.5e-3));
   }
-  // Kiyama's wall: factor 2 (Table 2: 7.28e4 cm); c = 2/3 (K22a) gives a stiffer spring
+  // Kiyama's wall: factor 2 (Table 2: 7.28e4 cm); c = 2/3 (K22.a) gives a stiffer spring
   const dem::Case cw = dem::read_case(path, {"contact.0.kn_from_elastic.factor=2"});
   CHECK_THAT(cw.model.laws[0].linear.kn / kRhoG * 100.0, WithinRel(7.274e4, 1e-3));
   const dem::Case c23 = dem::read_case(path, {"contact.0.kn_from_elastic.c=0.6666666666666666"});

@@ -65,7 +65,7 @@ TEST_CASE("kiyama: Table 1 K_n/(rho g) with c = 1.5 and q = 0.068 kgf/cm (refs �
         stiffness_over_rho_g_cm(kiyama_contact(table1_modulus[i], 0.068, ref::kiyama_constant_K23));
     CHECK_THAT(k, WithinRel(computed[i], 2e-4));
     CHECK_THAT(k, WithinRel(printed[i], 2e-3));
-    // c = 2/3 (K22a) with q = 0.0296 kgf/cm fits as well.
+    // c = 2/3 (K22.a) with q = 0.0296 kgf/cm fits as well.
     const double k22a = stiffness_over_rho_g_cm(
         kiyama_contact(table1_modulus[i], 0.0296, ref::kiyama_constant_K22a));
     CHECK_THAT(k22a, WithinRel(printed[i], 2e-3));
@@ -89,7 +89,7 @@ TEST_CASE("kiyama: Table 1 eta_n/(rho g) and dt rows (refs §5.3)", "[kiyama]") 
   for (int i = 0; i < 5; ++i) {
     CAPTURE(table1_modulus[i]);
     const double k = ref::contact_stiffness(kiyama_contact(table1_modulus[i], 0.068, 1.5));
-    const double eta = ref::critical_damping(m, k);  // (K25a)
+    const double eta = ref::critical_damping(m, k);  // (K25.a)
     CHECK_THAT(eta / rho_g * 100.0, WithinRel(eta_cm_s[i], 3e-3));
     const double dt = ref::kiyama_time_step_limit(k, eta);  // (K26)
     // refs §5.3 derived its dt row from the printed K_n with g = 980 cm/s^2: within 0.15 %.

@@ -29,8 +29,8 @@ Cycle step(Scheme scheme, Cycle c, double W, double zeta) {
   const double m = 1.0;
   const double eta = 2.0 * zeta;  // 2 zeta sqrt(m K)
   const double dt = W;
-  const double e = k * c.x;          // (K6a, K7a)
-  const double d = eta * c.dx / dt;  // (K6b, K7b)
+  const double e = k * c.x;          // (K6.a, K7.a)
+  const double d = eta * c.dx / dt;  // (K6.b, K7.b)
   const double f = -(e + d);
   const double v = c.v + dt * f / m;                                              // (K17)
   const double dx_next = scheme == Scheme::K18 ? v * dt : 0.5 * (c.dx + v * dt);  // (K18) / (K19)

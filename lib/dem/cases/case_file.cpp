@@ -150,7 +150,7 @@ struct Reader {
 
   /// kn_from_elastic = { E = "750 kgf/cm^2", nu = 0.3, q = "0.068 kgf/cm", radius = "1 cm", c = 1.5,
   /// factor = 1 }: Kiyama's K_n per unit thickness [Pa] from the 2D elastic contact of two equal
-  /// cylinders (K22b, K23), times `factor` (Kiyama's walls: 2).
+  /// cylinders (K22.b, K23), times `factor` (Kiyama's walls: 2).
   double kn_from_elastic(const TableReader& t) {
     const double e = t.quantity("E", dims::pressure);
     positive(t, "E", e);
@@ -163,7 +163,7 @@ struct Reader {
     const double cc = t.number("c", 1.5);
     const double factor = t.number("factor", 1.0);
     positive(t, "factor", factor);
-    const double kn = factor * hertz_2d_stiffness(e, nu, radius, q, cc);  // (K22b, K23)
+    const double kn = factor * hertz_2d_stiffness(e, nu, radius, q, cc);  // (K22.b, K23)
     if (!(kn > 0.0) || !std::isfinite(kn))
       t.fail("c", fmt::format("K23 gives no positive stiffness (c + 2 ln(4r/b) <= 0): {:.6g} Pa", kn));
     t.finish();
@@ -189,7 +189,7 @@ struct Reader {
     const std::string kind = r.choice("law", {"linear", "face"}, "linear");
     law.kind = kind == "linear" ? LawKind::linear : LawKind::face;
     const double l = m.thickness;
-    // friction
+    // friction: μ = tan φ (K28), also the tan φ of the face law's Mohr–Coulomb strength (M11)
     if (r.has("friction") && r.has("friction_angle")) r.fail("friction", "give either friction or friction_angle");
     double mu = r.has("friction_angle") ? std::tan(r.quantity("friction_angle", dims::angle)) : r.number("friction", 0.0);
     if (r.has("friction_angle")) {
@@ -237,7 +237,7 @@ struct Reader {
           auto [es, ds] = r.quantity_either("eta_s", dims::damping, dims::damping_per_thickness);
           law.eta_s = ds == dims::damping ? es : es * l;
         } else {
-          law.eta_s = law.eta_n * std::sqrt(law.linear.ks / law.linear.kn);  // (K25)
+          law.eta_s = law.eta_n * std::sqrt(law.linear.ks / law.linear.kn);  // (K25.b): η_s = η_n √s
         }
       }
     } else {
@@ -257,7 +257,8 @@ struct Reader {
       f.tan_phi = mu;
       f.healing = r.boolean("healing", false);
       law.bond_at_start = r.boolean("bonded", false);
-      // springs: discrete per segment (N/m) or moduli per unit area per unit strain (Pa), (M6)
+      // springs: discrete per segment (N/m, M6.1, M6.2) or moduli k_n, k_s per unit area per unit strain
+      // (Pa, M4, M5) that the face constants turn into K_n, K_s (M6.3, M6.4)
       if (r.has("kn") == r.has("kn_modulus")) r.fail_here("give exactly one of kn (per segment, N/m) or kn_modulus (Pa)");
       law.face_modulus = r.has("kn_modulus");
       law.face_kn = law.face_modulus ? r.quantity("kn_modulus", dims::pressure) : r.quantity("kn", dims::stiffness);

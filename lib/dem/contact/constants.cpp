@@ -10,7 +10,7 @@ double hertz_2d_stiffness(double e, double nu, double r, double q, double c) {
   if (e <= 0.0 || r <= 0.0 || q <= 0.0 || nu < 0.0 || nu >= 0.5)
     throw std::invalid_argument("hertz_2d_stiffness: need E > 0, r > 0, q > 0, 0 <= nu < 0.5");
   const double pi = std::numbers::pi;
-  const double b = std::sqrt((8.0 / pi) * (0.5 * r) * ((1.0 - nu * nu) / e) * q);  // (K22b)
+  const double b = std::sqrt((8.0 / pi) * (0.5 * r) * ((1.0 - nu * nu) / e) * q);  // (K22.b)
   return pi * e / (2.0 * (1.0 - nu * nu) * (c + 2.0 * std::log(4.0 * r / b)));     // (K23)
 }
 

@@ -4,8 +4,8 @@
 namespace dem {
 
 /// Kiyama's 2D elastic contact stiffness of two equal cylinders (K22, K23), per unit thickness [Pa]:
-/// b² = (8/π)(r/2)((1−ν²)/E) q  (contact half-width, K22b, r₁ = r₂ = r), and
-/// K_n = πE / (2(1−ν²)(c + 2 ln(4r/b)))  with c = 1.5 as printed in K23 (c = 2/3 from K22a).
+/// b² = (8/π)(r/2)((1−ν²)/E) q  (contact half-width, K22.b, r₁ = r₂ = r), and
+/// K_n = πE / (2(1−ν²)(c + 2 ln(4r/b)))  with c = 1.5 as printed in K23 (c = 2/3 from K22.a).
 /// K_n depends on the line load q [N/m] through b; Table 1 of the paper is reproduced with
 /// q = 0.068 kgf/cm and c = 1.5 (docs/references.md §5.2).
 double hertz_2d_stiffness(double youngs_modulus, double poisson, double radius, double line_load,

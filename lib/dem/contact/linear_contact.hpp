@@ -20,8 +20,8 @@ enum class Onset : std::uint8_t {
 };
 
 struct LinearContactHistory {
-  double en = 0.0;  // accumulated elastic normal force [N], compression positive (K6a)
-  double es = 0.0;  // accumulated elastic shear force [N] (K7a)
+  double en = 0.0;  // accumulated elastic normal force e_n [N], compression positive (K7.a)
+  double es = 0.0;  // accumulated elastic shear force e_s [N] (K11.a)
 };
 
 struct LinearSpringDashpot {
@@ -42,10 +42,10 @@ struct ContactForce {
 inline ContactForce linear_contact_force(const LinearSpringDashpot& law, double eta_n, double eta_s,
                                          double du_n, double du_s, double inv_dt,
                                          LinearContactHistory& h) {
-  h.en += law.kn * du_n;               // (K6a)
-  h.es += law.ks * du_s;               // (K7a)
-  const double dn = eta_n * du_n * inv_dt;  // (K6b)
-  double ds = eta_s * du_s * inv_dt;        // (K7b)
+  h.en += law.kn * du_n;               // (K6.a, K7.a)
+  h.es += law.ks * du_s;               // (K10.a, K11.a)
+  const double dn = eta_n * du_n * inv_dt;  // (K6.b, K7.b)
+  double ds = eta_s * du_s * inv_dt;        // (K10.b, K11.b)
   if (h.en < 0.0) {                    // (K8, K12): no tension, the contact opens
     h.en = 0.0;
     h.es = 0.0;
@@ -53,10 +53,10 @@ inline ContactForce linear_contact_force(const LinearSpringDashpot& law, double 
   }
   const double limit = law.mu * h.en;  // (K13): Coulomb slider
   if (std::abs(h.es) > limit) {
-    h.es = std::copysign(limit, h.es);
-    ds = 0.0;
+    h.es = std::copysign(limit, h.es);  // (K13.a)
+    ds = 0.0;                           // (K13.b)
   }
-  ContactForce f{h.en + dn, h.es + ds, false};  // (K14)
+  ContactForce f{h.en + dn, h.es + ds, false};  // (K9, K14)
   if (law.end_rule == EndRule::total && f.fn < 0.0) return {};
   return f;
 }

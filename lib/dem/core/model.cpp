@@ -16,7 +16,7 @@ std::size_t add_element(Model& m, Shape shape, std::int32_t material, double rad
     inertia = (2.0 / 3.0) * radius * radius * mass;
   } else {
     mass = std::numbers::pi * radius * radius * l * rho;  // (M18), Kiyama's disk
-    inertia = 0.5 * radius * radius * mass;
+    inertia = 0.5 * radius * radius * mass;  // Kiyama's I = ρπr⁴/2 per unit thickness (K16)
   }
   if (mass_override > 0.0) {
     // the inertia of the given mass in the same shape: scaled if the density gave a mass (as
@@ -40,8 +40,8 @@ std::size_t add_element(Model& m, Shape shape, std::int32_t material, double rad
   e.radius.push_back(radius);
   e.mass.push_back(mass);
   e.inertia.push_back(inertia);
-  e.inv_mass.push_back(1.0 / mass);
-  e.inv_inertia.push_back(1.0 / inertia);
+  e.inv_mass.push_back(1.0 / mass);        // ü = X/m, v̈ = Y/m (K16) are formed with 1/m and 1/I
+  e.inv_inertia.push_back(1.0 / inertia);  // φ̈ = M/I (K16)
   e.material.push_back(material);
   e.group.push_back(-1);
   e.shape.push_back(shape);

@@ -41,7 +41,7 @@ struct PairLaw {
   LinearSpringDashpot linear;  // kind == linear: kn, ks [N/m], mu, end rule
   FaceLaw face;                // kind == face
   double face_kn = 0.0, face_ks = 0.0;  // kind == face: discrete springs per segment [N/m] (M6), or
-  bool face_modulus = false;            //   if face_modulus: k_n, k_s per unit area per unit strain [Pa]
+  bool face_modulus = false;            //   if face_modulus: k_n, k_s per unit area per unit strain [Pa] (M4, M5)
   // Damping: explicit dashpots, or a damping ratio (h_n for the face law, (M7.3)).
   bool damping_from_ratio = true;
   double damping_ratio = 0.0;

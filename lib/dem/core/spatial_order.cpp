@@ -102,7 +102,7 @@ void renumber_pair_slots(LinearPairSlots& slots, const std::vector<std::uint32_t
   for (std::size_t k = 0; k < n; ++k) {
     SlotPair& p = slots.pair[k];
     std::uint32_t i = new_of_old[p.i], j = new_of_old[p.j];
-    if (i > j) {  // turned round: the normal from the new i towards the new j is the old one reversed
+    if (i > j) {  // turned round: the normal from the new i towards the new j (K4) is the old one reversed
       std::swap(i, j);
       slots.resultant[k].nx = -slots.resultant[k].nx;
       slots.resultant[k].ny = -slots.resultant[k].ny;

@@ -10,7 +10,8 @@
 namespace dem {
 
 /// Exact limit on W = ω₀Δt of one mass on a spring–dashpot with damping ratio ζ.
-/// K18: W < 2(√(1+ζ²) − ζ). K19: W < min(2ζ, 2(√(ζ²+3) − ζ)) — zero without damping.
+/// K18: W < 2(√(1+ζ²) − ζ); at ζ = 0 this is Cundall's rule (K21) read as Δt < 2√(m/K).
+/// K19: W < min(2ζ, 2(√(ζ²+3) − ζ)) — zero without damping; for ζ ≤ 1 it is Kiyama's Δt < η/K (K26).
 double stable_w(Integrator integrator, double zeta);
 
 /// Δt limit of one mass m on a spring K with dashpot η [s].
