@@ -1,0 +1,175 @@
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "engine/run_cache.hpp"
+#include "engine/run_dispatch.hpp"
+#include "engine/study_run.hpp"
+#include "ref/registry.hpp"
+
+// kind = "mode_map": block shapes × friction angles × slope angles, the mode read from the DEM's
+// motion against Sagaseta's classification (refs §2.3), as a text map, a coloured chart and one check
+// per block and friction angle.
+
+namespace ver {
+
+namespace {
+
+/// One grid point: Sagaseta's mode (ref), Goodman & Bray's (gb), the DEM's (−1: the run failed).
+struct Point {
+  std::size_t block, phi, alpha;
+  int ref = 0, gb = 0, dem = -1;
+  bool near_boundary = false;
+  double slide = 0.0, rotation = 0.0;
+};
+
+/// The map as a coloured chart: rows = block and φ, x = α; ring = Sagaseta, dot = the DEM.
+nlohmann::json mode_chart(const Study& s, const std::vector<Point>& pts) {
+  const char* names[] = {"stable", "slide", "topple", "slide + topple"};
+  const char* colours[] = {"#2ca02c", "#1f77b4", "#d62728", "#9467bd"};
+  nlohmann::json curves = nlohmann::json::array(), yticks = nlohmann::json::array();
+  std::vector<std::vector<double>> rx(4), ry(4), dx(4), dy(4);
+  std::vector<double> ex, ey, fx, fy;
+  for (const Point& p : pts) {
+    const double row = static_cast<double>(p.block * s.phis.size() + p.phi);
+    const double a = s.alphas[p.alpha] * 180.0 / std::numbers::pi;
+    rx[p.ref].push_back(a);
+    ry[p.ref].push_back(row);
+    if (p.dem >= 0) {
+      dx[p.dem].push_back(a);
+      dy[p.dem].push_back(row);
+    } else {
+      fx.push_back(a);
+      fy.push_back(row);
+    }
+    if (p.near_boundary) {
+      ex.push_back(a);
+      ey.push_back(row);
+    }
+  }
+  for (int m = 0; m < 4; ++m)
+    curves.push_back({{"label", fmt::format("Sagaseta: {}", names[m])}, {"x", rx[m]}, {"y", ry[m]},
+                      {"style", "points"}, {"colour", colours[m]}, {"point", 6}, {"size", 1.5}});
+  for (int m = 0; m < 4; ++m)
+    curves.push_back({{"label", fmt::format("DEM: {}", names[m])}, {"x", dx[m]}, {"y", dy[m]},
+                      {"style", "points"}, {"colour", colours[m]}, {"point", 7}, {"size", 0.75}});
+  curves.push_back({{"label", "near a boundary: not checked"}, {"x", ex}, {"y", ey}, {"style", "points"},
+                    {"colour", "#000000"}, {"point", 2}, {"size", 1.2}});
+  curves.push_back({{"label", "DEM run failed"}, {"x", fx}, {"y", fy}, {"style", "points"},
+                    {"colour", "#000000"}, {"point", 3}, {"size", 1.8}});
+  for (std::size_t b = 0; b < s.blocks.size(); ++b)
+    for (std::size_t f = 0; f < s.phis.size(); ++f)
+      yticks.push_back({static_cast<double>(b * s.phis.size() + f),
+                        fmt::format("{}×{}, φ={:.0f}°", s.blocks[b].first, s.blocks[b].second,
+                                    s.phis[f] * 180.0 / std::numbers::pi)});
+  const double rows_n = static_cast<double>(s.blocks.size() * s.phis.size());
+  return {{"id", "mode_map"}, {"title", "Mode map: Sagaseta (ring) against the DEM (dot), same colour = agreement"},
+                {"xlabel", "slope angle α [deg]"}, {"ylabel", "block (columns × rows) and friction angle φ"},
+                {"logx", false}, {"logy", false}, {"curves", curves}, {"yticks", yticks},
+                {"yrange", {-0.7, rows_n - 0.3}}};
+}
+
+}  // namespace
+
+void run_mode_map(StudyRun& run) {
+  const Study& s = run.s;
+  const StudyOptions& opt = run.opt;
+  // Sagaseta's dynamic classification (refs §2.3) against the DEM's motion, per grid point.
+  std::vector<Point> pts;
+  for (std::size_t b = 0; b < s.blocks.size(); ++b)
+    for (std::size_t f = 0; f < s.phis.size(); ++f)
+      for (std::size_t a = 0; a < s.alphas.size(); ++a) pts.push_back({b, f, a});
+  auto mode_at = [&](const char* solver, double alpha, double phi, double bw, double bh) {
+    return static_cast<int>(std::lround(ref::evaluate(solver, {{"alpha", alpha}, {"phi", phi}, {"b", bw}, {"h", bh}})));
+  };
+  std::vector<Planned> plan(pts.size());
+  parallel_for(pts.size(), opt.jobs, [&](std::size_t k) {
+    Point& p = pts[k];
+    const auto [cols, rows] = s.blocks[p.block];
+    const double bw = 2.0 * s.radius * cols, bh = 2.0 * s.radius * rows;
+    const double phi = s.phis[p.phi], alpha = s.alphas[p.alpha];
+    p.ref = mode_at("incline.mode", alpha, phi, bw, bh);
+    p.gb = mode_at("incline.mode_gb", alpha, phi, bw, bh);
+    // Near a boundary in α or in φ (e.g. b/h = tan φ exactly is the slide / slide + topple boundary).
+    p.near_boundary = mode_at("incline.mode", alpha - s.margin, phi, bw, bh) != p.ref ||
+                      mode_at("incline.mode", alpha + s.margin, phi, bw, bh) != p.ref ||
+                      mode_at("incline.mode", alpha, phi - s.margin, bw, bh) != p.ref ||
+                      mode_at("incline.mode", alpha, phi + s.margin, bw, bh) != p.ref;
+    std::vector<std::string> sets = s.set;
+    sets.push_back(fmt::format("lattice.0.columns={}", cols));
+    sets.push_back(fmt::format("lattice.0.rows={}", rows));
+    sets.push_back(fmt::format("physics.gravity.direction={:.17g} deg", alpha * 180.0 / std::numbers::pi - 90.0));
+    sets.push_back(fmt::format("contact.{}.friction_angle={:.17g} deg", s.wall_contact, phi * 180.0 / std::numbers::pi));
+    sets.push_back(fmt::format("probe.0.quantity=e{}.px(1,-1)", cols - 1));
+    sets.push_back(fmt::format("probe.2.quantity=e{}.px(1,-1)", cols - 1));
+    plan[k].sets = sets;
+  });
+  const std::vector<RunOut> mode_runs = run.run_many(plan, opt.jobs);
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    Point& p = pts[k];
+    const RunOut& r = mode_runs[k];
+    auto get = [&](const char* name) { return r.probes.count(name) ? r.probes.at(name) : std::nullopt; };
+    if (r.status == "blow-up" || !get("pivot_x") || !get("rotation") || !get("pivot_x_start") || !get("rotation_start")) continue;
+    // The motion after the start-up transient: from `pivot_x_start` / `rotation_start` to the end.
+    p.slide = *get("pivot_x") - *get("pivot_x_start");
+    p.rotation = std::abs(*get("rotation") - *get("rotation_start"));
+    const bool slides = p.slide > s.slide_threshold, rotates = p.rotation > s.rotation_threshold;
+    p.dem = slides ? (rotates ? 3 : 1) : (rotates ? 2 : 0);
+  }
+  const char code[] = {'.', 'S', 'T', 'X'};
+  std::ostringstream map;
+  map << "alpha (deg):          ";
+  for (double a : s.alphas) map << fmt::format("{:>3.0f}", a * 180.0 / std::numbers::pi);
+  map << "\n";
+  nlohmann::json rows = nlohmann::json::array();
+  int total_checked = 0, total_agree = 0, total_excluded = 0;
+  for (std::size_t b = 0; b < s.blocks.size(); ++b)
+    for (std::size_t f = 0; f < s.phis.size(); ++f) {
+      std::string ref_row, dem_row, gb_row, marks;
+      int checked = 0, agree = 0, excluded = 0;
+      for (const Point& p : pts) {
+        if (p.block != b || p.phi != f) continue;
+        ref_row += fmt::format("{:>3}", code[p.ref]);
+        gb_row += code[p.gb];
+        dem_row += fmt::format("{:>3}", p.dem < 0 ? '?' : code[p.dem]);
+        if (p.near_boundary) {
+          ++excluded;
+          marks += "  ~";
+        } else {
+          ++checked;
+          const bool ok = p.dem == p.ref;
+          agree += ok;
+          marks += ok ? "   " : "  !";
+        }
+      }
+      const auto [cols, rows_n] = s.blocks[b];
+      const std::string shape = fmt::format("{}x{} (b/h={:.3g})", cols, rows_n, double(cols) / rows_n);
+      const double phi_deg = s.phis[f] * 180.0 / std::numbers::pi;
+      map << fmt::format("{:<17} phi={:<3.0f} ref {}\n", shape, phi_deg, ref_row);
+      map << fmt::format("{:<17}         DEM {}\n", "", dem_row);
+      map << fmt::format("{:<17}             {}   [G&B: {}]\n", "", marks, gb_row);
+      rows.push_back({shape, fmt::format("{:.0f}", phi_deg), fmt::format("{}/{}", agree, checked), excluded});
+      total_checked += checked;
+      total_agree += agree;
+      total_excluded += excluded;
+      Check c = s.checks.front();
+      run.add_check(fmt::format("{}, φ = {:.0f}°: grid points where DEM ≠ Sagaseta", shape, phi_deg), 0.0,
+                static_cast<double>(checked - agree), c, std::nullopt,
+                fmt::format("{} points checked, {} within {:.1f}° (in α or φ) of a boundary not checked", checked, excluded,
+                            s.margin * 180.0 / std::numbers::pi));
+    }
+  map << "(. stable, S slide, T topple, X slide + topple; ~ within the margin of a mode boundary, not checked; ! disagrees)\n";
+  run.mode_chart = mode_chart(s, pts);
+  run.tables.push_back({{"title", "Mode map: Sagaseta (ref) against the DEM"}, {"preformatted", map.str()}});
+  run.tables.push_back({{"title", "Agreement per block and friction angle"},
+                      {"columns", {"block", "phi [deg]", "agree / checked", "excluded (near a boundary)"}},
+                      {"rows", rows}});
+  run.setup_extra["points checked"] = total_checked;
+  run.setup_extra["points agreeing"] = total_agree;
+  run.setup_extra["points excluded"] = total_excluded;
+  if (opt.print) fmt::print("{}", map.str());
+}
+
+}  // namespace ver

@@ -1,0 +1,132 @@
+#include "engine/study_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "dem/cases/case_file.hpp"
+#include "engine/run_cache.hpp"
+#include "engine/run_dispatch.hpp"
+#include "ref/registry.hpp"
+
+namespace fs = std::filesystem;
+
+namespace ver {
+
+std::vector<RunOut> StudyRun::run_many(const std::vector<Planned>& plan, int jobs) {
+  std::vector<RunOut> outs(plan.size());
+  std::vector<RunRequest> reqs;
+  std::vector<std::size_t> slot;
+  std::vector<fs::path> entries;
+  std::vector<std::string> case_paths;
+  const fs::path case_file = fs::absolute(s.case_file);
+  for (std::size_t k = 0; k < plan.size(); ++k) {
+    const dem::Case c = dem::read_case(s.case_file, plan[k].sets);
+    fs::path entry;
+    if (!cache_dir.empty()) {
+      entry = cache_entry(cache_dir, c.resolved, plan[k].sets, plan[k].out);
+      const fs::path& run_out = plan[k].out;
+      const bool files_ok = run_out.empty() || (fs::exists(run_out / "series.csv") && fs::exists(run_out / "summary.json"));
+      if (files_ok)
+        if (const auto cached = read_cached(entry)) {
+          ++reused;
+          outs[k] = {cached->probes, cached->status, cached->message, cached->eps};
+          continue;
+        }
+    }
+    reqs.push_back({case_file, plan[k].sets, plan[k].out, run_cost(c)});
+    slot.push_back(k);
+    entries.push_back(entry);
+    case_paths.push_back(c.path.string());
+  }
+  run_all(reqs, jobs, [&](std::size_t i, RunReply& r) {
+    const std::size_t k = slot[i];
+    const bool finished = r.status != "interrupted" && r.status != "case-error" && r.status != "error";
+    if (finished && !entries[i].empty()) {  // at once: a killed study keeps every finished run
+      write_cached(entries[i], {r.status, r.message, r.eps, r.probes}, case_paths[i], plan[k].sets);
+      ++ran;
+    }
+    outs[k] = {std::move(r.probes), r.status, r.message, r.eps};
+  });
+  for (const RunOut& r : outs) {  // the first failure in plan order, whatever finished first
+    if (r.status == "interrupted") throw StudyInterrupted(fmt::format("study {}: {}", s.name, r.message));
+    if (r.status == "case-error") throw dem::CaseError(r.message);
+    if (r.status == "error") throw std::runtime_error(r.message);
+  }
+  return outs;
+}
+
+RunOut StudyRun::run_one(const std::vector<std::string>& sets, const fs::path& run_out) {
+  return run_many({Planned{sets, run_out}}, 1).front();
+}
+
+std::optional<double> StudyRun::reference_of(const Check& c, const Variant& v, double param,
+                                             const RefinementLevel* level) const {
+  if (c.value) return c.value;
+  if (c.solver.empty()) return std::nullopt;
+  std::map<std::string, double> args = v.args;
+  if (level)
+    for (const auto& [k, x] : level->args) args[k] = x;
+  for (const auto& [k, x] : c.args) args[k] = x;
+  // Only the arguments the solver takes: variant args may serve several solvers.
+  std::map<std::string, double> use;
+  for (const auto& info : ref::solvers())
+    if (info.name == c.solver)
+      for (const auto& a : info.arguments) {
+        if (a.name == "param") use[a.name] = param;
+        else if (args.count(a.name)) use[a.name] = args[a.name];
+      }
+  return c.offset + c.scale * ref::evaluate(c.solver, use);
+}
+
+void StudyRun::add_check(const std::string& quantity, std::optional<double> reference, std::optional<double> dem,
+                         const Check& c, std::optional<double> order, const std::string& note) {
+  std::optional<double> err;
+  bool ok = dem.has_value();
+  if (dem && reference) {
+    const double e = std::abs(*dem - *reference);
+    err = c.relative ? e / std::abs(*reference) : e;
+    if (c.expect == Expect::within) ok = *err <= c.tolerance;
+    else if (c.expect == Expect::above) ok = *dem > *reference + c.tolerance;
+    else ok = *dem < *reference - c.tolerance;
+  }
+  bool order_ok = true;
+  if (c.expected_order) order_ok = order && std::abs(*order - *c.expected_order) <= c.order_band;
+  ok = ok && order_ok;
+  passed = passed && ok;
+  auto j = [](std::optional<double> x) { return x ? nlohmann::json(*x) : nlohmann::json(nullptr); };
+  checks.push_back({{"quantity", quantity}, {"reference", j(reference)}, {"dem", j(dem)}, {"error", j(err)},
+                    {"error_kind", c.relative ? "rel" : "abs"}, {"tolerance", c.tolerance},
+                    {"tolerance_reason", c.reason}, {"observed_order", j(order)},
+                    {"expected_order", j(c.expected_order)},
+                    {"order_band", c.expected_order ? nlohmann::json(c.order_band) : nlohmann::json(nullptr)},
+                    {"expect", c.expect == Expect::within ? "within" : c.expect == Expect::above ? "above" : "below"},
+                    {"passed", ok}, {"note", note}});
+}
+
+std::string check_label(const Check& c, const Variant& v) {
+  return v.label.empty() ? c.label : fmt::format("{}, {}", c.label, v.label);
+}
+
+std::string fmt_value(std::optional<double> v) { return v ? fmt::format("{:.6g}", *v) : std::string("—"); }
+
+std::optional<double> probe_of(const RunOut& r, const std::string& probe) {
+  if (probe == "element_steps_per_second") return r.eps > 0.0 ? std::optional<double>(r.eps) : std::nullopt;
+  return r.probes.count(probe) ? r.probes.at(probe) : std::nullopt;
+}
+
+double evaluate_solver(const std::string& solver, const std::map<std::string, double>& args) {
+  std::map<std::string, double> use;
+  for (const auto& info : ref::solvers())
+    if (info.name == solver)
+      for (const auto& a : info.arguments)
+        if (args.count(a.name)) use[a.name] = args.at(a.name);
+  return ref::evaluate(solver, use);
+}
+
+void fail(const Study& s, const std::string& key, const std::string& what) {
+  throw std::runtime_error(fmt::format("{}: {}: {}", s.file.string(), key, what));
+}
+
+}  // namespace ver

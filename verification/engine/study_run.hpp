@@ -1,0 +1,80 @@
+#pragma once
+// One study being run (engine/study.cpp): its runs, reused from the run cache or handed to the run
+// pool, and what it has produced so far — checks, convergence series, tables, the finest run of each
+// variant. Each kind of study fills it in a file of its own (study_levels.cpp: single and refinement,
+// study_mode_map.cpp, study_stability.cpp); study_figures.cpp draws the declared figures and tables
+// from it; study.cpp writes result.json.
+#include <atomic>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/study.hpp"
+#include "engine/study_file.hpp"
+
+namespace ver {
+
+/// A finished run: its probes (empty on a blow-up), status and speed.
+struct RunOut {
+  std::map<std::string, std::optional<double>> probes;
+  std::string status, message;
+  double eps = 0.0;
+};
+
+/// A run to do: the overrides of the base case and its run folder (empty: no files).
+struct Planned {
+  std::vector<std::string> sets;
+  std::filesystem::path out;
+};
+
+struct StudyRun {
+  const Study& s;
+  std::filesystem::path out;
+  const StudyOptions& opt;
+  std::filesystem::path cache_dir;   // finished runs, one small JSON file each (run_cache.hpp)
+  std::atomic<int> reused{0}, ran{0};
+
+  nlohmann::json checks = nlohmann::json::array(), series = nlohmann::json::array();
+  nlohmann::json tables = nlohmann::json::array(), setup_extra = nlohmann::json::object();
+  nlohmann::json mode_chart;          // mode_map: the coloured chart (the first figure)
+  bool passed = true;
+  std::vector<RunOut> finest_runs;    // the finest run of each variant (stability: probe "limit")
+  double speed_sum = 0.0;
+  std::size_t speed_n = 0;
+
+  /// Runs a batch of the base case with overrides: reuses cached runs, hands the others to run_all
+  /// (threads here, or the ranks of an MPI job: run_dispatch.hpp), caches each as it finishes. The
+  /// k-th result belongs to the k-th plan, whatever order the runs finish in.
+  std::vector<RunOut> run_many(const std::vector<Planned>& plan, int jobs);
+  RunOut run_one(const std::vector<std::string>& sets, const std::filesystem::path& run_out = {});  // jobs = 1
+
+  /// The reference of a check for a variant: the solver at the variant's arguments, over them a
+  /// refinement level's (if given), over those the check's own.
+  std::optional<double> reference_of(const Check& c, const Variant& v, double param,
+                                     const RefinementLevel* level = nullptr) const;
+  /// Appends a check row to result.json's checks (and folds its verdict into `passed`).
+  void add_check(const std::string& quantity, std::optional<double> reference, std::optional<double> dem,
+                 const Check& c, std::optional<double> order, const std::string& note);
+};
+
+/// "label, variant" (the label alone for the unnamed variant).
+std::string check_label(const Check& c, const Variant& v);
+std::string fmt_value(std::optional<double> v);
+/// A probe of a run; "element_steps_per_second" is the run's speed.
+std::optional<double> probe_of(const RunOut& r, const std::string& probe);
+/// A registry solver with only the arguments it takes (variant arguments may serve several solvers).
+double evaluate_solver(const std::string& solver, const std::map<std::string, double>& args);
+[[noreturn]] void fail(const Study& s, const std::string& key, const std::string& what);
+
+void run_levels(StudyRun& run);      // kind single or refinement (study_levels.cpp)
+void run_mode_map(StudyRun& run);    // study_mode_map.cpp
+void run_stability(StudyRun& run);   // study_stability.cpp
+/// The declared figures (after the mode map's chart) and tables (appended to run.tables).
+nlohmann::json draw_figures(const StudyRun& run);
+void fill_tables(StudyRun& run);
+
+}  // namespace ver
