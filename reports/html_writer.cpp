@@ -84,7 +84,7 @@ std::string summary_section(const ReportContent& content) {
                      counts.checks_passed + counts.checks_failed + counts.checks_other,
                      content.studies.size(), counts.studies_passed, counts.studies_failed);
   if (counts.studies_unreadable > 0)
-    out += fmt::format(", {} unreadable", counts.studies_unreadable);
+    out += fmt::format(", {} unreadable or broken", counts.studies_unreadable);
   if (counts.studies_other > 0) out += fmt::format(", {} without verdict", counts.studies_other);
   out += ").</p>\n";
   if (content.studies.empty()) return out + "<p>No result.json found.</p>\n</section>\n";

@@ -16,6 +16,7 @@ std::string status_text(const std::string& status) {
   if (status == "PASS") return "\u2705 PASS";
   if (status == "FAIL") return "\u274c **FAIL**";
   if (status == "UNREADABLE") return "\u26a0\ufe0f **UNREADABLE**";
+  if (status == "BROKEN") return "\u26a0\ufe0f **BROKEN**";
   return status;
 }
 
@@ -96,7 +97,7 @@ std::string summary(const ReportContent& content) {
                      counts.checks_passed + counts.checks_failed + counts.checks_other,
                      content.studies.size(), counts.studies_passed, counts.studies_failed);
   if (counts.studies_unreadable > 0)
-    out += fmt::format(", {} unreadable", counts.studies_unreadable);
+    out += fmt::format(", {} unreadable or broken", counts.studies_unreadable);
   if (counts.studies_other > 0) out += fmt::format(", {} without verdict", counts.studies_other);
   out += ").\n\n";
   if (content.studies.empty()) return out + "No result.json found.\n\n";

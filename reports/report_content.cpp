@@ -22,7 +22,7 @@ Counts count_outcomes(const ReportContent& content) {
       ++counts.studies_passed;
     else if (status == "FAIL")
       ++counts.studies_failed;
-    else if (status == "UNREADABLE")
+    else if (status == "UNREADABLE" || status == "BROKEN")
       ++counts.studies_unreadable;
     else
       ++counts.studies_other;
@@ -312,7 +312,7 @@ TableData table_data(const nlohmann::json& table) {
 std::string status_class(const std::string& status) {
   if (status == "PASS") return "pass";
   if (status == "FAIL") return "fail";
-  if (status == "UNREADABLE") return "unreadable";
+  if (status == "UNREADABLE" || status == "BROKEN") return "unreadable";
   return "na";
 }
 

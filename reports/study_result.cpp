@@ -6,7 +6,35 @@
 #include <iostream>
 #include <sstream>
 
+#include <fmt/format.h>
+
 namespace report {
+
+namespace {
+
+constexpr int kMaxDepth = 64;  // result.json nests 6 levels; parsing and printing recurse per level
+
+/// The deepest nesting of [ and { in a JSON text (outside strings).
+int nesting_depth(const std::string& text) {
+  int depth = 0, deepest = 0;
+  bool in_string = false;
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    const char c = text[k];
+    if (in_string) {
+      if (c == '\\') ++k;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+}  // namespace
 
 std::vector<StudyResult> read_study_results(const std::filesystem::path& studies_dir) {
   std::vector<StudyResult> studies;
@@ -16,6 +44,12 @@ std::vector<StudyResult> read_study_results(const std::filesystem::path& studies
     StudyResult study;
     study.folder = entry.path().filename().string();
     study.path = path;
+    if (std::filesystem::exists(path) && !std::filesystem::is_regular_file(path)) {
+      study.read_error = "result.json is not a file";
+      std::cerr << "report: warning: " << path.string() << ": " << study.read_error << "\n";
+      studies.push_back(std::move(study));
+      continue;
+    }
     if (!std::filesystem::is_regular_file(path)) {
       // A study that was started but has no result (killed, or still running) is listed, never
       // replaced by an older result: `dem2d study` removes result.json before it starts.
@@ -33,15 +67,19 @@ std::vector<StudyResult> read_study_results(const std::filesystem::path& studies
       study.read_error = "cannot open the file";
     } else {
       try {
+        if (nesting_depth(buffer.str()) > kMaxDepth)  // a deep file would overflow the stack later
+          throw std::runtime_error(fmt::format("nested deeper than {} levels", kMaxDepth));
         study.result = nlohmann::json::parse(buffer.str());
         if (!study.result.is_object()) study.read_error = "top level is not a JSON object";
-      } catch (const nlohmann::json::exception& e) {
+      } catch (const std::exception& e) {
         study.read_error = e.what();
       }
     }
     if (!study.readable())
       std::cerr << "report: warning: unreadable " << path.string() << ": " << study.read_error
                 << "\n";
+    else if (const std::string why = broken_reason(study); !why.empty())
+      std::cerr << "report: warning: BROKEN " << path.string() << ": " << why << "\n";
     studies.push_back(std::move(study));
   }
   std::sort(studies.begin(), studies.end(),
@@ -94,14 +132,28 @@ std::string check_status(const nlohmann::json& check) {
 
 std::string study_status(const StudyResult& study) {
   if (!study.readable()) return "UNREADABLE";
-  if (const auto passed = bool_field(study.result, "passed")) return *passed ? "PASS" : "FAIL";
-  bool any_passed = false;
-  for (const auto& check : array_field(study.result, "checks")) {
-    const auto status = check_status(check);
-    if (status == "FAIL") return "FAIL";
-    any_passed |= status == "PASS";
+  // Recomputed from the checks, never taken from the file's own verdict: a study passes when it has
+  // checks and every one passed. Anything else that does not add up is BROKEN.
+  const nlohmann::json& r = study.result;
+  if (!r.contains("checks") || !r.at("checks").is_array() || r.at("checks").empty()) return "BROKEN";
+  bool all = true;
+  for (const auto& check : r.at("checks")) {
+    const auto passed = bool_field(check, "passed");
+    if (!passed) return "BROKEN";
+    all = all && *passed;
   }
-  return any_passed ? "PASS" : "n/a";
+  if (const auto passed = bool_field(r, "passed"); !passed || *passed != all) return "BROKEN";
+  return all ? "PASS" : "FAIL";
+}
+
+std::string broken_reason(const StudyResult& study) {
+  if (!study.readable() || study_status(study) != "BROKEN") return {};
+  const nlohmann::json& r = study.result;
+  if (!r.contains("checks") || !r.at("checks").is_array()) return "\"checks\" is not a list of checks";
+  if (r.at("checks").empty()) return "no checks";
+  for (const auto& check : r.at("checks"))
+    if (!bool_field(check, "passed")) return "a check without a true/false \"passed\"";
+  return "\"passed\" disagrees with its checks";
 }
 
 }  // namespace report

@@ -31,9 +31,12 @@ const nlohmann::json& array_field(const nlohmann::json& j, const char* key);   /
 const nlohmann::json& object_field(const nlohmann::json& j, const char* key);  // {} if absent
 std::vector<std::optional<double>> number_array(const nlohmann::json& j, const char* key);
 
-// "PASS", "FAIL" or "n/a" for a check or study object (its "passed" field; a study without one
-// fails if any of its checks fails).
+// "PASS", "FAIL" or "n/a" for a check (its "passed" field).
 std::string check_status(const nlohmann::json& check);
-std::string study_status(const StudyResult& study);  // also "UNREADABLE"
+// A study's status, recomputed from its checks: "PASS" (at least one check, all passed), "FAIL", "BROKEN"
+// (no list of checks, no check, a check without a boolean "passed", or the file's own "passed"
+// disagreeing with its checks) or "UNREADABLE" (not JSON, not an object, nested deeper than 64, not a file).
+std::string study_status(const StudyResult& study);
+std::string broken_reason(const StudyResult& study);  // why BROKEN, in words ("" otherwise)
 
 }  // namespace report

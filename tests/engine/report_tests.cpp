@@ -10,6 +10,7 @@
 
 #include "gnuplot_plot.hpp"
 #include "report.hpp"
+#include "study_result.hpp"
 
 namespace {
 
@@ -178,8 +179,42 @@ TEST_CASE("a malformed result.json is reported, not fatal", "[report]") {
   CHECK(html.find("b_broken") != std::string::npos);
   CHECK(html.find("parse error") != std::string::npos);  // the JSON error is shown
   CHECK(html.find("block_on_slope") != std::string::npos);
-  CHECK(html.find("2 unreadable") != std::string::npos);
+  CHECK(html.find("2 unreadable or broken") != std::string::npos);
   CHECK(read(written.markdown).find("UNREADABLE") != std::string::npos);
+}
+
+TEST_CASE("a study's status is recomputed from its checks, and what does not add up is BROKEN", "[report]") {
+  auto status_of = [](const std::string& text) {
+    TempDir tmp;
+    write(tmp.path / "studies" / "s" / "result.json", text);
+    const auto studies = report::read_study_results(tmp.path / "studies");
+    REQUIRE(studies.size() == 1);
+    return report::study_status(studies.front());
+  };
+  const std::string good = passing_study, bad = failing_study;
+  CHECK(status_of(good) == "PASS");
+  CHECK(status_of(bad) == "FAIL");
+  auto replaced = [](std::string text, const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    return text.replace(at, from.size(), to);
+  };
+  // "passed": true beside a failed check: the file's verdict is not taken
+  CHECK(status_of(replaced(bad, "\"passed\": false,\n  \"checks\"", "\"passed\": true,\n  \"checks\"")) == "BROKEN");
+  // checks that are not a list, or none at all
+  const auto from = good.find("\"checks\": [");
+  const auto to = good.find("\"series\": [");
+  CHECK(status_of(good.substr(0, from) + "\"checks\": \"x\",\n  " + good.substr(to)) == "BROKEN");
+  CHECK(status_of(good.substr(0, from) + "\"checks\": [],\n  " + good.substr(to)) == "BROKEN");
+  CHECK(status_of(replaced(good, "\"passed\": true, \"note\"", "\"passed\": \"yes\", \"note\"")) == "BROKEN");
+  // 10^5 levels of nesting: refused, not a stack overflow
+  CHECK(status_of("{\"checks\": " + std::string(100000, '[') + std::string(100000, ']') + "}") == "UNREADABLE");
+  TempDir tmp;  // a result.json that is a folder is listed as unreadable, not skipped
+  fs::create_directories(tmp.path / "studies" / "d" / "result.json");
+  const auto studies = report::read_study_results(tmp.path / "studies");
+  REQUIRE(studies.size() == 1);
+  CHECK(report::study_status(studies.front()) == "UNREADABLE");
+  CHECK(studies.front().read_error == "result.json is not a file");
 }
 
 TEST_CASE("a failing gnuplot is noted in place of the figure", "[report]") {

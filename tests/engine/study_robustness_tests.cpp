@@ -137,7 +137,7 @@ TEST_CASE("One broken result.json does not stop the others from being read", "[s
   for (const char* d : {"a_good", "b_truncated", "c_no_order", "d_running"}) fs::create_directories(dir / d);
   std::ofstream(dir / "a_good" / "result.json") << R"({"study": "a", "passed": true, "checks": [{"passed": true}]})";
   std::ofstream(dir / "b_truncated" / "result.json") << R"({"study": "b", "checks": [)";
-  std::ofstream(dir / "c_no_order" / "result.json") << R"({"study": "c", "checks": [{"passed": false, "observed_order": 2}]})";
+  std::ofstream(dir / "c_no_order" / "result.json") << R"({"study": "c", "passed": false, "checks": [{"passed": false, "observed_order": 2}]})";
   std::ofstream(dir / "d_running" / "running.json") << R"({"status": "running"})";
   const auto studies = report::read_study_results(dir);
   REQUIRE(studies.size() == 4);
