@@ -7,6 +7,7 @@
 #include "dem/cases/case_file.hpp"
 #include "dem/run/interrupt.hpp"
 #include "dem/run/run.hpp"
+#include "engine/progress.hpp"
 #include "engine/run_cache.hpp"
 
 namespace ver {
@@ -36,8 +37,18 @@ RunReply run_here(const RunRequest& req, const std::filesystem::path& out_dir) {
 void set_run_distributor(RunDistributor* d) { g_distributor = d; }
 RunDistributor* run_distributor() { return g_distributor; }
 
-void run_all(const std::vector<RunRequest>& reqs, int jobs, const RunDone& done) {
+void run_all(const std::vector<RunRequest>& reqs, int jobs, const RunDone& done_here) {
   if (reqs.empty()) return;
+  Progress* progress = current_progress();
+  if (progress) progress->planned(reqs.size());
+  // Each finished run is told to the progress line; its time is the work over its speed.
+  const RunDone done = [&](std::size_t i, RunReply& r) {
+    const std::vector<std::string> sets = reqs[i].sets;
+    const std::string status = r.status;
+    const double seconds = r.eps > 0.0 ? reqs[i].cost / r.eps : std::nan("");
+    done_here(i, r);
+    if (progress) progress->finished(status, seconds, sets);
+  };
   if (g_distributor) {
     g_distributor->run(reqs, done);
     return;

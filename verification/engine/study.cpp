@@ -1,12 +1,16 @@
 #include "engine/study.hpp"
 
 #include <chrono>
+#include <cstdio>
+
+#include <unistd.h>
 
 #include <fmt/format.h>
 
 #include "dem/cases/text.hpp"
 #include "dem/run/output_files.hpp"
 #include "dem/run/run.hpp"
+#include "engine/progress.hpp"
 #include "engine/study_file.hpp"
 #include "engine/study_run.hpp"
 
@@ -67,6 +71,8 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   fs::remove(out / "result.json");
   dem::write_file_atomic(out / "running.json", nlohmann::json{{"study", s.name}, {"status", "running"},
                                                               {"provenance", dem::provenance()}}.dump(2) + "\n");
+  Progress progress("study " + s.name, stderr, opt.print && ::isatty(::fileno(stderr)), opt.verbose);
+  const ProgressScope shown(&progress);
   StudyRun run{s, out, opt, out / "cache"};
   if (!opt.use_cache) fs::remove_all(run.cache_dir);  // --fresh: forget earlier runs, record the new ones
   fs::create_directories(run.cache_dir);
@@ -74,6 +80,7 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   if (s.kind == Kind::single || s.kind == Kind::refinement) run_levels(run);
   else if (s.kind == Kind::mode_map) run_mode_map(run);
   else run_stability(run);
+  progress.close();
   const nlohmann::json figures = draw_figures(run);
   fill_tables(run);
 

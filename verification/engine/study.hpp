@@ -17,6 +17,7 @@ struct StudyOptions {
   int jobs = 1;                    // runs in parallel
   bool print = true;               // print the table
   bool use_cache = true;           // reuse finished runs from <out>/cache (false: --fresh, clears it first)
+  bool verbose = false;            // a line per finished run on stderr (progress.hpp)
 };
 
 /// Thrown when SIGINT / SIGTERM stopped a run: the study stops without writing result.json (finished

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "dem/cases/case_file.hpp"
+#include "engine/progress.hpp"
 #include "engine/run_cache.hpp"
 #include "engine/run_dispatch.hpp"
 #include "ref/registry.hpp"
@@ -40,6 +41,7 @@ std::vector<RunOut> StudyRun::run_many(const std::vector<Planned>& plan, int job
     entries.push_back(entry);
     case_paths.push_back(c.path.string());
   }
+  if (Progress* p = current_progress(); p && reqs.size() < plan.size()) p->reused(plan.size() - reqs.size());
   run_all(reqs, jobs, [&](std::size_t i, RunReply& r) {
     const std::size_t k = slot[i];
     const bool finished = r.status != "interrupted" && r.status != "case-error" && r.status != "error";
