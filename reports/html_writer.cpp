@@ -244,8 +244,7 @@ std::string study_section(const StudyReport& study) {
   const auto command = text_field(provenance, "command");
   if (!command.empty()) {
     out += "<p class=\"small\">Command: <code>" + escape(command) + "</code>";
-    if (const auto wall = number_field(provenance, "wall_time_s"))
-      out += fmt::format(" &middot; wall time {:.1f} s", *wall);
+    if (number_field(provenance, "wall_time_s")) out += " &middot; wall time " + escape(wall_time_words(provenance));
     out += "</p>\n";
   }
   const auto setup = setup_fields(result);

@@ -147,7 +147,7 @@ std::string study_section(const StudyReport& study) {
   const auto command = text_field(provenance, "command");
   if (!command.empty()) {
     out += "Command: `" + command + "`";
-    if (const auto wall = number_field(provenance, "wall_time_s")) out += fmt::format(" · wall time {:.1f} s", *wall);
+    if (number_field(provenance, "wall_time_s")) out += " · wall time " + wall_time_words(provenance);
     out += "\n\n";
   }
   const auto setup = setup_fields(result);

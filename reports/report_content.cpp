@@ -163,10 +163,7 @@ std::vector<OverviewRow> overview_rows(const ReportContent& content) {
           row.orders += " (" + format_number(*expected) + ")";
       }
     }
-    if (const auto wall = number_field(object_field(source.result, "provenance"), "wall_time_s"))
-      row.wall_time = fmt::format("{:.1f} s", *wall);
-    else
-      row.wall_time = std::string(missing_value);
+    row.wall_time = wall_time_words(object_field(source.result, "provenance"), true);
     rows.push_back(row);
   }
   return rows;
@@ -307,6 +304,26 @@ TableData table_data(const nlohmann::json& table) {
     data.rows.push_back(std::move(row));
   }
   return data;
+}
+
+std::string wall_time_words(const nlohmann::json& provenance, bool brief) {
+  const auto wall = number_field(provenance, "wall_time_s");
+  if (!wall) return std::string(missing_value);
+  std::string out = fmt::format("{:.1f} s", *wall);
+  const auto reused = number_field(provenance, "runs_reused");
+  if (!reused || *reused <= 0) return out;
+  const double total = *reused + number_field(provenance, "runs_run").value_or(0.0);
+  const auto original = number_field(provenance, "reused_run_seconds");
+  if (brief)
+    return out + fmt::format(" ({:.0f}/{:.0f} cached{})", *reused, total,
+                             original ? fmt::format(", originally {:.1f} s", *original) : std::string());
+  out += fmt::format("; {:.0f} of {:.0f} runs reused from the cache", *reused, total);
+  std::vector<std::string> from;
+  if (original) from.push_back(fmt::format("their original run time {:.1f} s", *original));
+  if (const auto code = text_field(provenance, "reused_code_version"); !code.empty()) from.push_back("code " + code);
+  if (const auto date = text_field(provenance, "reused_date"); !date.empty()) from.push_back(date);
+  if (!from.empty()) out += " (" + fmt::format("{}", fmt::join(from, ", ")) + ")";
+  return out;
 }
 
 std::string status_class(const std::string& status) {

@@ -101,6 +101,11 @@ struct TableData {
 };
 TableData table_data(const nlohmann::json& table);
 
+// A study's wall time in words, saying what the run cache served: "1.3 s", or "0.0 s; 12 of 12 runs
+// reused from the cache (their original run time 1.3 s, code 90b980b, 2026-11-27T04:58:01Z)".
+// `brief`: the table cell's form, "0.0 s (12/12 cached, originally 1.3 s)". "—" when not recorded.
+std::string wall_time_words(const nlohmann::json& provenance, bool brief = false);
+
 // Lowercase status for CSS classes: pass, fail, unreadable, na.
 std::string status_class(const std::string& status);
 

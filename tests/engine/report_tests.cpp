@@ -10,6 +10,7 @@
 
 #include "gnuplot_plot.hpp"
 #include "report.hpp"
+#include "report_content.hpp"
 #include "study_result.hpp"
 
 namespace {
@@ -215,6 +216,28 @@ TEST_CASE("a study's status is recomputed from its checks, and what does not add
   REQUIRE(studies.size() == 1);
   CHECK(report::study_status(studies.front()) == "UNREADABLE");
   CHECK(studies.front().read_error == "result.json is not a file");
+}
+
+TEST_CASE("a study served from the run cache says so beside its wall time", "[report]") {
+  TempDir tmp;
+  std::string text = passing_study;
+  const std::string from = "\"overrides\": [\"numerics.dt=1e-6\"] },";
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, from.size(), "\"overrides\": [\"numerics.dt=1e-6\"], \"wall_time_s\": 0.04, \"command\": \"dem2d study x\", "
+                                "\"runs_run\": 0, \"runs_reused\": 12, \"reused_run_seconds\": 1.3, "
+                                "\"reused_code_version\": \"v9-1-gabc\", \"reused_date\": \"2026-11-27T04:58:01Z\" },");
+  write(tmp.path / "studies" / "cached" / "result.json", text);
+  report::Options options;
+  options.studies_dir = tmp.path / "studies";
+  options.out_dir = tmp.path / "out";
+  const auto written = report::write_report(options);
+  const std::string words = "wall time 0.0 s; 12 of 12 runs reused from the cache (their original run time 1.3 s, code v9-1-gabc, 2026-11-27T04:58:01Z)";
+  CHECK(read(written.html).find(words) != std::string::npos);
+  CHECK(read(written.markdown).find(words) != std::string::npos);
+  CHECK(read(written.html).find("0.0 s (12/12 cached, originally 1.3 s)") != std::string::npos);
+  // a study that ran everything: the wall time alone
+  CHECK(report::wall_time_words(nlohmann::json{{"wall_time_s", 2.25}, {"runs_run", 3}, {"runs_reused", 0}}) == "2.2 s");
 }
 
 TEST_CASE("a failing gnuplot is noted in place of the figure", "[report]") {

@@ -41,6 +41,10 @@ std::optional<CachedRun> read_cached(const std::filesystem::path& entry) {
     CachedRun r{j.at("status").get<std::string>(), j.at("message").get<std::string>(), j.value("eps", 0.0), {}};
     for (const auto& [k, v] : j.at("probes").items())
       r.probes[k] = v.is_null() ? std::nullopt : std::optional<double>(v.get<double>());
+    if (const auto p = j.find("provenance"); p != j.end() && p->is_object()) {
+      r.code_version = p->value("code_version", "");
+      r.date = p->value("date", "");
+    }
     return r;
   } catch (const std::exception&) {
     return std::nullopt;  // unreadable: run again

@@ -28,6 +28,7 @@ struct CachedRun {
   std::string status, message;
   double eps = 0.0;  // element-steps per second
   std::map<std::string, std::optional<double>> probes;
+  std::string code_version, date;  // of the run that wrote the entry (read back only)
 };
 
 /// The cache file of a run, in `dir`: keyed by the code identity, the resolved case (its content after

@@ -101,6 +101,11 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
     result["readme"] = dem::read_file(readme);
   result["provenance"]["runs_reused"] = run.reused.load();
   result["provenance"]["runs_run"] = run.ran.load();
+  if (run.reused.load() > 0) {  // what the cache served: the report says so beside the wall time
+    result["provenance"]["reused_run_seconds"] = run.reused_seconds;
+    result["provenance"]["reused_code_version"] = run.reused_code_version;
+    result["provenance"]["reused_date"] = run.reused_date;
+  }
   dem::write_file_atomic(out / "result.json", result.dump(2) + "\n");
   fs::remove(out / "running.json");
   if (opt.print) print_checks(s, run.checks, run.passed, out);

@@ -32,6 +32,7 @@ std::vector<RunOut> StudyRun::run_many(const std::vector<Planned>& plan, int job
       if (files_ok)
         if (const auto cached = read_cached(entry)) {
           ++reused;
+          note_reused(*cached, run_cost(c));
           outs[k] = {cached->probes, cached->status, cached->message, cached->eps};
           continue;
         }
@@ -57,6 +58,15 @@ std::vector<RunOut> StudyRun::run_many(const std::vector<Planned>& plan, int job
     if (r.status == "error") throw std::runtime_error(r.message);
   }
   return outs;
+}
+
+void StudyRun::note_reused(const CachedRun& cached, double cost) {
+  std::lock_guard<std::mutex> lock(reused_mutex);
+  if (cached.eps > 0.0) reused_seconds += cost / cached.eps;
+  if (cached.date >= reused_date) {
+    reused_date = cached.date;
+    reused_code_version = cached.code_version;
+  }
 }
 
 RunOut StudyRun::run_one(const std::vector<std::string>& sets, const fs::path& run_out) {

@@ -7,12 +7,14 @@
 #include <atomic>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "engine/run_cache.hpp"
 #include "engine/study.hpp"
 #include "engine/study_file.hpp"
 
@@ -37,6 +39,10 @@ struct StudyRun {
   const StudyOptions& opt;
   std::filesystem::path cache_dir;   // finished runs, one small JSON file each (run_cache.hpp)
   std::atomic<int> reused{0}, ran{0};
+  // The runs the cache served: their original run time (work / speed) and where they came from.
+  double reused_seconds = 0.0;
+  std::string reused_code_version, reused_date;  // of the newest reused run
+  std::mutex reused_mutex;
 
   nlohmann::json checks = nlohmann::json::array(), series = nlohmann::json::array();
   nlohmann::json tables = nlohmann::json::array(), setup_extra = nlohmann::json::object();
@@ -51,6 +57,9 @@ struct StudyRun {
   /// k-th result belongs to the k-th plan, whatever order the runs finish in.
   std::vector<RunOut> run_many(const std::vector<Planned>& plan, int jobs);
   RunOut run_one(const std::vector<std::string>& sets, const std::filesystem::path& run_out = {});  // jobs = 1
+
+  /// Counts a run the cache served into reused_seconds and the newest reused code version and date.
+  void note_reused(const CachedRun& cached, double cost);
 
   /// The reference of a check for a variant: the solver at the variant's arguments, over them a
   /// refinement level's (if given), over those the check's own.
