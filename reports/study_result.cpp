@@ -55,6 +55,14 @@ std::vector<StudyResult> read_study_results(const std::filesystem::path& studies
       // replaced by an older result: `dem2d study` removes result.json before it starts.
       if (std::filesystem::is_regular_file(entry.path() / "running.json")) {
         study.read_error = "no result.json: the study was interrupted or is still running";
+        try {  // how it ended, if it says ("failed" or "interrupted", with the message)
+          std::ifstream mark(entry.path() / "running.json");
+          const nlohmann::json j = nlohmann::json::parse(mark);
+          const std::string status = j.value("status", "running");
+          if (status == "failed" || status == "interrupted")
+            study.read_error = "no result.json: the study " + status + ": " + j.value("message", std::string("(no message)"));
+        } catch (const std::exception&) {
+        }
         std::cerr << "report: warning: " << entry.path().string() << ": " << study.read_error << "\n";
         studies.push_back(std::move(study));
       }

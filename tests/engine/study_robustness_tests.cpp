@@ -19,6 +19,7 @@
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
 
 namespace {
 
@@ -147,6 +148,25 @@ TEST_CASE("One broken result.json does not stop the others from being read", "[s
   CHECK_FALSE(report::number_field(report::array_field(studies[2].result, "checks")[0], "expected_order"));
   CHECK(report::study_status(studies[3]) == "UNREADABLE");
   CHECK_THAT(studies[3].read_error, Contains("interrupted or is still running"));
+}
+
+TEST_CASE("A study that fails after it started says so in running.json, and the report shows why", "[study][report]") {
+  // A case key that reads but a run the case reader refuses at run time: a variant that sets the time
+  // step above the stability limit. The study stops with the guard's message; running.json records it.
+  const fs::path dir = fresh_dir("failed_mark");
+  const fs::path f = dir / "verification" / "fails" / "study.toml";
+  fs::create_directories(f.parent_path());
+  std::ofstream(f) << "[study]\ncase = \"" << test::source("cases/impact/disk_wall.toml").string()
+                   << "\"\n[[variant]]\nlabel = \"too large\"\nset = [\"numerics.dt=1e-2\"]\n"
+                      "[[check]]\nprobe = \"e\"\nvalue = 0.5\ntolerance = 1\nreason = \"engine test\"\n";
+  const fs::path out = dir / "studies" / "fails";
+  CHECK_THROWS(ver::run_study(f, quiet(out)));
+  const nlohmann::json mark = nlohmann::json::parse(std::ifstream(out / "running.json"));
+  CHECK(mark["status"] == "failed");
+  CHECK_THAT(mark["message"].get<std::string>(), Contains("numerics.dt"));
+  const auto studies = report::read_study_results(dir / "studies");
+  REQUIRE(studies.size() == 1);
+  CHECK_THAT(studies[0].read_error, StartsWith("no result.json: the study failed: ") && Contains("numerics.dt"));
 }
 
 namespace {

@@ -61,4 +61,18 @@ void write_cached(const std::filesystem::path& entry, const CachedRun& run, cons
                                     .dump() + "\n", false);
 }
 
+void mark_running(const std::filesystem::path& out, const std::string& study) {
+  dem::write_file_atomic(out / "running.json", nlohmann::json{{"study", study}, {"status", "running"},
+                                                              {"provenance", dem::provenance()}}.dump(2) + "\n");
+}
+
+void mark_ended(const std::filesystem::path& out, const std::string& study, const std::string& status,
+                const std::string& message) {
+  try {  // best effort: the error being reported matters more than this note (a full disk)
+    dem::write_file_atomic(out / "running.json", nlohmann::json{{"study", study}, {"status", status}, {"message", message},
+                                                                {"provenance", dem::provenance()}}.dump(2) + "\n");
+  } catch (const std::exception&) {
+  }
+}
+
 }  // namespace ver

@@ -43,6 +43,13 @@ std::optional<CachedRun> read_cached(const std::filesystem::path& entry);
 void write_cached(const std::filesystem::path& entry, const CachedRun& run, const std::string& case_path,
                   const std::vector<std::string>& sets);
 
+/// <out>/running.json while a study or sweep is under way ("running": also what a study killed by
+/// SIGKILL leaves); `end` records how it ended otherwise — "failed" or "interrupted" with the message —
+/// and `remove` takes it away once result.json is in place.
+void mark_running(const std::filesystem::path& out, const std::string& study);
+void mark_ended(const std::filesystem::path& out, const std::string& study, const std::string& status,
+                const std::string& message);
+
 /// Runs f(0) … f(n−1) on `jobs` threads; rethrows the first exception after all have finished.
 template <class F>
 void parallel_for(std::size_t n, int jobs, F&& f) {

@@ -59,18 +59,9 @@ void print_checks(const Study& s, const nlohmann::json& checks, bool passed, con
   fmt::print("  => {}  ({})\n", passed ? "PASSED" : "FAILED", (out / "result.json").string());
 }
 
-}  // namespace
-
-StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
-  const auto started = std::chrono::steady_clock::now();
-  const Study s = read_study(file);
-  const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
-  fs::create_directories(out);
-  // Never a stale result: the old result.json goes first; running.json marks a study under way (or
-  // killed) until the new result.json is renamed into place.
-  fs::remove(out / "result.json");
-  dem::write_file_atomic(out / "running.json", nlohmann::json{{"study", s.name}, {"status", "running"},
-                                                              {"provenance", dem::provenance()}}.dump(2) + "\n");
+/// The study after its file was read and running.json written: run it, draw, write result.json.
+StudyResult run_marked(const Study& s, const fs::path& file, const fs::path& out, const StudyOptions& opt,
+                       std::chrono::steady_clock::time_point started) {
   Progress progress("study " + s.name, stderr, opt.print && ::isatty(::fileno(stderr)), opt.verbose);
   const ProgressScope shown(&progress);
   StudyRun run{s, out, opt, out / "cache"};
@@ -110,6 +101,28 @@ StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   fs::remove(out / "running.json");
   if (opt.print) print_checks(s, run.checks, run.passed, out);
   return {run.passed, result};
+}
+
+}  // namespace
+
+StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
+  const auto started = std::chrono::steady_clock::now();
+  const Study s = read_study(file);
+  const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
+  fs::create_directories(out);
+  // Never a stale result: the old result.json goes first; running.json marks a study under way (or
+  // killed) until the new result.json is renamed into place, and says how it ended if it failed.
+  fs::remove(out / "result.json");
+  mark_running(out, s.name);
+  try {
+    return run_marked(s, file, out, opt, started);
+  } catch (const StudyInterrupted& e) {
+    mark_ended(out, s.name, "interrupted", e.what());
+    throw;
+  } catch (const std::exception& e) {
+    mark_ended(out, s.name, "failed", e.what());
+    throw;
+  }
 }
 
 }  // namespace ver
