@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "report_content.hpp"
 #include "study_result.hpp"
 
 namespace fs = std::filesystem;
@@ -38,8 +39,7 @@ void print_study_summary(const fs::path& studies_dir) {
       }
     }
     (study_status(st) == "PASS" ? pass : fail) += 1;
-    const std::string name = text_field(j, "study");
-    fmt::print("{:<24} {:>7} {:>7}  {:<12} {}\n", name.empty() ? st.folder : name, n, bad,
+    fmt::print("{:<24} {:>7} {:>7}  {:<12} {}\n", study_name(st), n, bad,
                orders ? fmt::format("{}/{} ok", orders_ok, orders) : std::string("-"), text_field(j, "title"));
   }
   fmt::print("studies: {} passed, {} failed\n\n", pass, fail);
