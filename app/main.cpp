@@ -26,6 +26,7 @@
 #include "dem/run/interrupt.hpp"
 #include "dem/run/output_files.hpp"
 #include "dem/run/resolved_case.hpp"
+#include "dem/run/case_in_words.hpp"
 #include "dem/run/run.hpp"
 #include "dem/core/simulation.hpp"
 #include "engine/sensitivity.hpp"
@@ -35,7 +36,7 @@
 #include "engine/mpi/mpi_runs.hpp"
 #endif
 #include "report.hpp"
-#include "study_result.hpp"
+#include "study_summary.hpp"
 
 namespace fs = std::filesystem;
 
@@ -51,61 +52,6 @@ constexpr const char* kExitCodes =
     "file:line: key; 3 a run blew up (the message names the step and the bound); 4 an output could not be written "
     "(full disk, unwritable folder); 128 + the signal when stopped by SIGINT (130) or SIGTERM (143), everything "
     "finished written.";
-
-/// One contact law's resolved settings in words, defaults included (check prints every one).
-std::string law_in_words(const nlohmann::json& l) {
-  std::string s = fmt::format("{}–{}: {} law", l["between"][0].get<std::string>(), l["between"][1].get<std::string>(),
-                              l["law"].get<std::string>());
-  if (l["law"] == "linear") {
-    s += fmt::format(", kn = {:.6g} N/m, ks = {:.6g} N/m, friction = {:.6g}, end rule {} ({}), onset {} ({})",
-                     l["kn"].get<double>(), l["ks"].get<double>(), l["friction"].get<double>(), l["end_rule"].get<std::string>(),
-                     l["end_rule"] == "elastic" ? "opens when e_n < 0, K8" : "no attractive total force",
-                     l["onset"].get<std::string>(),
-                     l["onset"] == "increment" ? "the first increment goes into e_n, Cundall" : "e_n from the overlap");
-  } else {
-    s += fmt::format(", {} segment(s) at the {} ({}), normal increment {}, tangential increment {}, onset {}",
-                     l["segments"].get<int>(), l["positions"] == "centres" ? "segment centres" : "face ends",
-                     l["positions"] == "centres" ? "M13.1" : "M13.2", l["normal_increment"].get<std::string>(),
-                     l["tangential_increment"].get<std::string>(), l["onset"].get<std::string>());
-    if (l.contains("kn")) s += fmt::format(", kn = {:.6g} N/m per segment, ks = {:.6g} N/m", l["kn"].get<double>(), l["ks"].get<double>());
-    else s += fmt::format(", kn = {:.6g} Pa, ks = {:.6g} Pa (moduli)", l["kn_modulus"].get<double>(), l["ks_modulus"].get<double>());
-    s += fmt::format(", tan phi = {:.6g}, tensile strength {:.6g} Pa, cohesion {:.6g} Pa{}{}", l["friction"].get<double>(),
-                     l["tensile_strength"].get<double>(), l["cohesion"].get<double>(), l["bonded"].get<bool>() ? ", bonded at the start" : "",
-                     l["healing"].get<bool>() ? ", healing" : "");
-  }
-  if (l.contains("damping_ratio"))
-    s += fmt::format(", damping ratio {:.6g} ({} mass)", l["damping_ratio"].get<double>(), l["mass_basis"].get<std::string>());
-  else
-    s += fmt::format(", dashpots eta_n = {:.6g}, eta_s = {:.6g} N*s/m", l["eta_n"].get<double>(), l["eta_s"].get<double>());
-  return s;
-}
-
-/// What limits Δt, in words: the element, its contacts, the mode and the scheme's branch (refs §1.5).
-std::string limit_in_words(const dem::Model& m, const dem::StabilityBound& b, double limit) {
-  if (!std::isfinite(limit)) return "no contact can form: no limit from contacts";
-  const auto i = static_cast<std::size_t>(b.element);
-  const dem::Elements& e = m.elements;
-  std::string s = fmt::format(
-      "the fastest mode of element {} (a {} of radius {:.4g} m, mass {:.4g} kg, material {}) pressed by {} element "
-      "and {} wall contact(s) through {} at once, in the worst arrangement of their directions: "
-      "stiffness rate lambda = {:.4g} 1/s^2 (omega = {:.4g} rad/s), damping rate c = {:.4g} 1/s; ",
-      b.element, e.shape[i] == dem::Shape::disk ? "disk" : "PRE", e.radius[i], e.mass[i],
-      m.materials[static_cast<std::size_t>(e.material[i])].name, b.element_contacts, b.wall_contacts,
-      b.law.empty() ? std::string("no contact") : b.law, b.stiffness_rate, std::sqrt(b.stiffness_rate), b.damping_rate);
-  const double lam = b.stiffness_rate, c = b.damping_rate;
-  if (m.numerics.integrator == dem::Integrator::k18) {
-    s += "K18 (symplectic Euler) loses stability when that mode flips sign every step: dt < 4/(sqrt(c^2 + 4 lambda) + c)";
-  } else {
-    const double flip = 12.0 / (std::sqrt(c * c + 12.0 * lam) + c);
-    if (limit < flip * (1.0 - 1e-9))
-      s += fmt::format("K19 (averaged increment) is limited by its Hopf branch, dt < eta/K = {:.6g} s: the averaging needs "
-                       "damping (the flip branch alone would allow {:.6g} s)", limit, flip);
-    else
-      s += "K19 (averaged increment) loses stability on its flip branch: dt < 12/(sqrt(c^2 + 12 lambda) + c)";
-  }
-  return s + " (the shear springs of linear, Coulomb contacts are left out of this limit: a sliding contact bounds a "
-             "shear mode)";
-}
 
 int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
   const dem::Case c = dem::read_case(file, sets);
@@ -129,12 +75,12 @@ int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
              m.numerics.dt, m.numerics.duration, rc["numerics"]["steps"].get<std::int64_t>());
   fmt::print("  neighbour skin {:.6g} m, blow-up: max step {:.3g} of a radius\n", rc["numerics"]["skin"].get<double>(),
              m.numerics.max_step_fraction);
-  for (const auto& l : rc["contacts"]) fmt::print("  contact {}\n", law_in_words(l));
+  for (const auto& l : rc["contacts"]) fmt::print("  contact {}\n", dem::law_in_words(l));
   for (const auto& p : rc["probes"])
     fmt::print("  probe {}: {} [{}]\n", p["name"].get<std::string>(), p["kind"].get<std::string>(), p["unit"].get<std::string>());
   fmt::print("  stability limit: {:.6g} s (dt is {:.3g} of it), over every contact the case can form\n", limit,
              m.numerics.dt / limit);
-  if (b.element >= 0) fmt::print("    what limits it: {}\n", limit_in_words(m, b, limit));
+  if (b.element >= 0) fmt::print("    what limits it: {}\n", dem::limit_in_words(m, b, limit));
   if (b.limit_sticking < limit)
     fmt::print("    with every Coulomb shear spring sticking: {:.6g} s (dt is {:.3g} of it; a shear mode above it is "
                "bounded by sliding, |f_s| = mu f_n)\n", b.limit_sticking, m.numerics.dt / b.limit_sticking);
@@ -170,40 +116,160 @@ int cmd_run(const fs::path& file, const std::vector<std::string>& sets, fs::path
   return 0;
 }
 
-/// The summary table of every study's checks, on the terminal (the report has the full tables).
-void print_summary(const fs::path& studies_dir) {
-  int pass = 0, fail = 0;
-  fmt::print("\n{:<24} {:>7} {:>7}  {:<12} {}\n", "study", "checks", "failed", "orders", "title");
-  if (!fs::is_directory(studies_dir)) {
-    fmt::print("studies: none (no folder {})\n\n", studies_dir.string());
-    return;
-  }
-  // Tolerant reading (study_result.hpp): a broken or incomplete study is listed as such; the others follow.
-  for (const report::StudyResult& st : report::read_study_results(studies_dir)) {
-    if (!st.readable()) {
-      fmt::print("{:<24} BROKEN: {}\n", st.folder, st.read_error);
-      ++fail;
-      continue;
+/// Every option of every subcommand, as the command line gives it.
+struct Cli {
+  std::string case_file, study_file;
+  std::vector<std::string> sets;
+  std::string out_dir;
+  bool quiet = false;
+  dem::RunOptions run_opt;
+  std::string restart, start_from;
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  bool fresh = false;
+  std::string studies_dir = "build/studies", report_dir = "build/report";
+  std::string docs_dir, bench_dir;
+  CLI::App *run = nullptr, *check = nullptr, *study = nullptr, *sweep = nullptr, *report = nullptr;
+};
+
+void add_run(CLI::App& app, Cli& o) {
+  auto* run = o.run = app.add_subcommand("run", "Run a case: writes series.csv, summary.json and vtk/ snapshots");
+  run->add_option("case", o.case_file, "Case file (TOML)")->required()->check(CLI::ExistingFile);
+  run->add_option("--set", o.sets, "Override a case value: key=value, e.g. numerics.dt=1e-6 or \"contact.0.kn=12 kN/mm\"");
+  run->add_option("--out", o.out_dir, "Output folder (default runs/<case name>)");
+  run->add_flag("-q,--quiet", o.quiet, "No progress or summary on the terminal");
+  // Default 1: every study already runs its runs side by side on one thread each, and on a machine shared
+  // with other work a second thread mostly waits for its partner (bench/journal.md, "Threads inside a run").
+  o.run_opt.threads = 1;
+  const std::string cores = std::to_string(std::max(1u, std::thread::hardware_concurrency()));
+  run->add_option("--threads", o.run_opt.threads,
+                  "Threads inside the run: a number, or auto (this machine's cores, " + cores +
+                      ") (default 1; runs of at least 8192 elements can use 2 or more); the results are the same "
+                      "bit for bit for any number")
+      ->transform(CLI::Transformer({{"auto", cores}}))
+      ->check(CLI::Range(1, 1024));
+  run->add_option("--checkpoint-every", o.run_opt.checkpoint_every,
+                  "Write <out>/checkpoint.bin every N steps (replaced each time; SIGINT/SIGTERM always write one)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_flag("--checkpoint-at-end", o.run_opt.checkpoint_at_end, "Write <out>/checkpoint.bin at the end of the run");
+  auto* restart_opt = run->add_option("--restart", o.restart,
+                                      "Continue from a checkpoint of this case (bit for bit like the uninterrupted run)")
+                          ->check(CLI::ExistingFile);
+  run->add_option("--start-from", o.start_from,
+                  "Start this case from the state of a checkpoint of another case (same elements, walls and dt)")
+      ->check(CLI::ExistingFile)
+      ->excludes(restart_opt);
+}
+
+void add_check(CLI::App& app, Cli& o) {
+  o.check = app.add_subcommand("check", "Check a case (keys, units, values, time step) without running it");
+  o.check->add_option("case", o.case_file, "Case file (TOML)")->required()->check(CLI::ExistingFile);
+  o.check->add_option("--set", o.sets, "Override a case value: key=value");
+}
+
+void add_study_and_sweep(CLI::App& app, Cli& o) {
+  auto* study = o.study =
+      app.add_subcommand("study", "Run one verification study and write its result.json; fails if a check fails");
+  study->add_option("study", o.study_file, "Study file (verification/<name>/study.toml)")->required()->check(CLI::ExistingFile);
+  study->add_option("--out", o.out_dir, "Output folder (default build/studies/<name>)");
+  study->add_option("-j,--jobs", o.jobs, "Runs in parallel")->check(CLI::PositiveNumber);
+  study->add_flag("--fresh", o.fresh, "Clear the cache of finished runs in the study folder first (run everything again)");
+
+  auto* sweep = o.sweep =
+      app.add_subcommand("sweep", "Run one sensitivity study (one-at-a-time, Morris, Sobol') and write its result.json");
+  sweep->add_option("study", o.study_file, "Sensitivity study file (verification/sensitivity_<name>/sensitivity.toml)")
+      ->required()->check(CLI::ExistingFile);
+  sweep->add_option("--out", o.out_dir, "Output folder (default build/studies/<name>)");
+  sweep->add_option("-j,--jobs", o.jobs, "Runs in parallel")->check(CLI::PositiveNumber);
+  sweep->add_flag("--fresh", o.fresh, "Clear the cache of finished runs in the study folder first");
+}
+
+void add_report(CLI::App& app, Cli& o) {
+  auto* rep = o.report =
+      app.add_subcommand("report", "Write the verification report (index.html, index.md) from study results");
+  rep->add_option("--studies", o.studies_dir, "Folder with one sub-folder per study holding result.json");
+  rep->add_option("--out", o.report_dir, "Report folder");
+  rep->add_option("--docs", o.docs_dir,
+                  "The docs/ folder rendered into the page, every citation linked to it (default: ./docs, else the "
+                  "source tree's)");
+  rep->add_option("--bench", o.bench_dir,
+                  "The speed benchmark shown in the report: a bench/suite.py output folder (table.md, cost.svg) or "
+                  "a folder of kept tables, of which the name that sorts last (default: ./bench/results, else the "
+                  "source tree's)")
+      ->check(CLI::ExistingDirectory);
+}
+
+/// A first word that is no subcommand: says so and returns true (CLI11 would ask for one).
+bool unknown_subcommand(CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return false;
+  std::vector<std::string> names;
+  for (const auto* sub : app.get_subcommands([](CLI::App*) { return true; })) names.push_back(sub->get_name());
+  if (std::find(names.begin(), names.end(), argv[1]) != names.end()) return false;
+  const std::string near = dem::nearest_word(argv[1], names);
+  fmt::print(stderr, "error: unknown subcommand '{}'{} (dem2d --help lists them: {})\n", argv[1],
+             near.empty() ? "" : fmt::format("; did you mean '{}'?", near), fmt::join(names, ", "));
+  return true;
+}
+
+int cmd_study(const Cli& o, bool sweep) {
+  ver::StudyOptions so;
+  so.out_dir = o.out_dir;
+  so.jobs = o.jobs;
+  so.use_cache = !o.fresh;
+  if (sweep) return ver::run_sensitivity(o.study_file, so).passed ? 0 : 1;
+  const ver::StudyResult r = ver::run_study(o.study_file, so);
+  return r.passed ? 0 : 1;
+}
+
+int cmd_report(const Cli& cli, int argc, char** argv) {
+  report::Options o;
+  o.studies_dir = cli.studies_dir;
+  o.out_dir = cli.report_dir;
+  o.title = "dem2d verification report";
+  o.provenance = dem::provenance();
+  std::string command;  // the exact command that wrote the report
+  for (int k = 0; k < argc; ++k) command += (k ? " " : "") + std::string(argv[k]);
+  o.provenance["report command"] = command;
+  o.provenance["libraries"] = o.provenance["libraries"].get<std::string>() + ", " + ref::library_versions() +
+                              ", CLI11 " CLI11_VERSION;
+  o.provenance["working directory"] = fs::current_path().string();
+  o.docs_dir = !cli.docs_dir.empty() ? fs::path(cli.docs_dir)
+               : fs::is_directory("docs") ? fs::path("docs") : fs::path(DEM2D_SOURCE_DIR) / "docs";
+  o.bench_dir = !cli.bench_dir.empty() ? fs::path(cli.bench_dir)
+                : fs::is_directory("bench/results") ? fs::path("bench/results")
+                                                   : fs::path(DEM2D_SOURCE_DIR) / "bench/results";
+  report::print_study_summary(cli.studies_dir);
+  const report::Written w = report::write_report(o);
+  fmt::print("report: {} studies, {} figures\n  {}\n  {}\n", w.studies, w.figures, fs::absolute(w.html).string(),
+             fs::absolute(w.markdown).string());
+  return 0;
+}
+
+/// Runs the chosen subcommand; each kind of error is an exit status (kExitCodes).
+int dispatch(Cli& o, int argc, char** argv) {
+  try {
+    if (*o.run) {
+      o.run_opt.restart = !o.restart.empty() ? o.restart : o.start_from;
+      o.run_opt.restart_other_case = !o.start_from.empty();
+      return cmd_run(o.case_file, o.sets, o.out_dir, o.quiet, o.run_opt);
     }
-    const nlohmann::json& j = st.result;
-    int n = 0, bad = 0, orders = 0, orders_ok = 0;
-    for (const auto& c : report::array_field(j, "checks")) {
-      ++n;
-      if (report::check_status(c) != "PASS") ++bad;
-      const auto expected = report::number_field(c, "expected_order");
-      if (expected) {
-        ++orders;
-        const auto observed = report::number_field(c, "observed_order");
-        const auto band = report::number_field(c, "order_band");
-        if (observed && band && std::abs(*observed - *expected) <= *band) ++orders_ok;
-      }
-    }
-    (report::study_status(st) == "PASS" ? pass : fail) += 1;
-    const std::string name = report::text_field(j, "study");
-    fmt::print("{:<24} {:>7} {:>7}  {:<12} {}\n", name.empty() ? st.folder : name, n, bad,
-               orders ? fmt::format("{}/{} ok", orders_ok, orders) : std::string("-"), report::text_field(j, "title"));
+    if (*o.check) return cmd_check(o.case_file, o.sets);
+    if (*o.study) return cmd_study(o, false);
+    if (*o.sweep) return cmd_study(o, true);
+    if (*o.report) return cmd_report(o, argc, argv);
+  } catch (const dem::CaseError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  } catch (const dem::OutputError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 4;
+  } catch (const ver::StudyInterrupted& e) {
+    fmt::print(stderr, "interrupted: {} (finished runs are cached; run the study again to continue)\n", e.what());
+    return interrupted_exit();
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
   }
-  fmt::print("studies: {} passed, {} failed\n\n", pass, fail);
+  return 0;
 }
 
 }  // namespace
@@ -220,87 +286,14 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", fmt::format("dem2d {} ({} build, {})", p["code_version"].get<std::string>(),
                                                   p["build_type"].get<std::string>(), p["compiler"].get<std::string>()));
   }
-
-  std::string case_file, study_file;
-  std::vector<std::string> sets;
-  std::string out_dir;
-  bool quiet = false;
-  auto* run = app.add_subcommand("run", "Run a case: writes series.csv, summary.json and vtk/ snapshots");
-  run->add_option("case", case_file, "Case file (TOML)")->required()->check(CLI::ExistingFile);
-  run->add_option("--set", sets, "Override a case value: key=value, e.g. numerics.dt=1e-6 or \"contact.0.kn=12 kN/mm\"");
-  run->add_option("--out", out_dir, "Output folder (default runs/<case name>)");
-  run->add_flag("-q,--quiet", quiet, "No progress or summary on the terminal");
-  dem::RunOptions run_opt;
-  // Default 1: every study already runs its runs side by side on one thread each, and on a machine shared
-  // with other work a second thread mostly waits for its partner (bench/journal.md, "Threads inside a run").
-  run_opt.threads = 1;
-  const std::string cores = std::to_string(std::max(1u, std::thread::hardware_concurrency()));
-  run->add_option("--threads", run_opt.threads,
-                  "Threads inside the run: a number, or auto (this machine's cores, " + cores +
-                      ") (default 1; runs of at least 8192 elements can use 2 or more); the results are the same "
-                      "bit for bit for any number")
-      ->transform(CLI::Transformer({{"auto", cores}}))
-      ->check(CLI::Range(1, 1024));
-  std::string restart, start_from;
-  run->add_option("--checkpoint-every", run_opt.checkpoint_every,
-                  "Write <out>/checkpoint.bin every N steps (replaced each time; SIGINT/SIGTERM always write one)")
-      ->check(CLI::NonNegativeNumber);
-  run->add_flag("--checkpoint-at-end", run_opt.checkpoint_at_end, "Write <out>/checkpoint.bin at the end of the run");
-  auto* restart_opt = run->add_option("--restart", restart,
-                                      "Continue from a checkpoint of this case (bit for bit like the uninterrupted run)")
-                          ->check(CLI::ExistingFile);
-  run->add_option("--start-from", start_from,
-                  "Start this case from the state of a checkpoint of another case (same elements, walls and dt)")
-      ->check(CLI::ExistingFile)
-      ->excludes(restart_opt);
-
-  auto* check = app.add_subcommand("check", "Check a case (keys, units, values, time step) without running it");
-  check->add_option("case", case_file, "Case file (TOML)")->required()->check(CLI::ExistingFile);
-  check->add_option("--set", sets, "Override a case value: key=value");
-
-  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  auto* study = app.add_subcommand("study", "Run one verification study and write its result.json; fails if a check fails");
-  study->add_option("study", study_file, "Study file (verification/<name>/study.toml)")->required()->check(CLI::ExistingFile);
-  study->add_option("--out", out_dir, "Output folder (default build/studies/<name>)");
-  study->add_option("-j,--jobs", jobs, "Runs in parallel")->check(CLI::PositiveNumber);
-  bool fresh = false;
-  study->add_flag("--fresh", fresh, "Clear the cache of finished runs in the study folder first (run everything again)");
-
-  auto* sweep = app.add_subcommand("sweep", "Run one sensitivity study (one-at-a-time, Morris, Sobol') and write its result.json");
-  sweep->add_option("study", study_file, "Sensitivity study file (verification/sensitivity_<name>/sensitivity.toml)")
-      ->required()->check(CLI::ExistingFile);
-  sweep->add_option("--out", out_dir, "Output folder (default build/studies/<name>)");
-  sweep->add_option("-j,--jobs", jobs, "Runs in parallel")->check(CLI::PositiveNumber);
-  sweep->add_flag("--fresh", fresh, "Clear the cache of finished runs in the study folder first");
-
-  std::string studies_dir = "build/studies", report_dir = "build/report";
-  auto* rep = app.add_subcommand("report", "Write the verification report (index.html, index.md) from study results");
-  rep->add_option("--studies", studies_dir, "Folder with one sub-folder per study holding result.json");
-  rep->add_option("--out", report_dir, "Report folder");
-  std::string docs_dir;
-  rep->add_option("--docs", docs_dir,
-                  "The docs/ folder rendered into the page, every citation linked to it (default: ./docs, else the "
-                  "source tree's)");
-
-  std::string bench_dir;
-  rep->add_option("--bench", bench_dir,
-                  "The speed benchmark shown in the report: a bench/suite.py output folder (table.md, cost.svg) or "
-                  "a folder of kept tables, of which the name that sorts last (default: ./bench/results, else the "
-                  "source tree's)")
-      ->check(CLI::ExistingDirectory);
-
+  Cli o;
+  add_run(app, o);
+  add_check(app, o);
+  add_study_and_sweep(app, o);
+  add_report(app, o);
   app.footer(kExitCodes);
   for (auto* sub : app.get_subcommands([](CLI::App*) { return true; })) sub->footer(kExitCodes);
-  if (argc >= 2 && argv[1][0] != '-') {  // a word that is no subcommand: say so (CLI11 would ask for one)
-    std::vector<std::string> names;
-    for (const auto* sub : app.get_subcommands([](CLI::App*) { return true; })) names.push_back(sub->get_name());
-    if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
-      const std::string near = dem::nearest_word(argv[1], names);
-      fmt::print(stderr, "error: unknown subcommand '{}'{} (dem2d --help lists them: {})\n", argv[1],
-                 near.empty() ? "" : fmt::format("; did you mean '{}'?", near), fmt::join(names, ", "));
-      return 2;
-    }
-  }
+  if (unknown_subcommand(app, argc, argv)) return 2;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -312,67 +305,9 @@ int main(int argc, char** argv) {
 #ifdef DEM2D_MPI
   // Under mpirun: rank 0 does the command; for study and sweep the other ranks run what it hands out
   // (engine/mpi/mpi_runs.hpp, docs/cluster.md), for any other command they do nothing.
-  if (mpi.rank() > 0) return (*study || *sweep) ? ver::mpi::serve(jobs) : 0;
+  if (mpi.rank() > 0) return (*o.study || *o.sweep) ? ver::mpi::serve(o.jobs) : 0;
   std::optional<ver::mpi::Distributor> distributor;
-  if (mpi.size() > 1 && (*study || *sweep)) distributor.emplace(jobs);
+  if (mpi.size() > 1 && (*o.study || *o.sweep)) distributor.emplace(o.jobs);
 #endif
-  try {
-    if (*run) {
-      run_opt.restart = !restart.empty() ? restart : start_from;
-      run_opt.restart_other_case = !start_from.empty();
-      return cmd_run(case_file, sets, out_dir, quiet, run_opt);
-    }
-    if (*check) return cmd_check(case_file, sets);
-    if (*study) {
-      ver::StudyOptions o;
-      o.out_dir = out_dir;
-      o.jobs = jobs;
-      o.use_cache = !fresh;
-      const ver::StudyResult r = ver::run_study(study_file, o);
-      return r.passed ? 0 : 1;
-    }
-    if (*sweep) {
-      ver::StudyOptions o;
-      o.out_dir = out_dir;
-      o.jobs = jobs;
-      o.use_cache = !fresh;
-      return ver::run_sensitivity(study_file, o).passed ? 0 : 1;
-    }
-    if (*rep) {
-      report::Options o;
-      o.studies_dir = studies_dir;
-      o.out_dir = report_dir;
-      o.title = "dem2d verification report";
-      o.provenance = dem::provenance();
-      std::string command;  // the exact command that wrote the report
-      for (int k = 0; k < argc; ++k) command += (k ? " " : "") + std::string(argv[k]);
-      o.provenance["report command"] = command;
-      o.provenance["libraries"] = o.provenance["libraries"].get<std::string>() + ", " + ref::library_versions() +
-                                  ", CLI11 " CLI11_VERSION;
-      o.provenance["working directory"] = fs::current_path().string();
-      o.docs_dir = !docs_dir.empty() ? fs::path(docs_dir)
-                   : fs::is_directory("docs") ? fs::path("docs") : fs::path(DEM2D_SOURCE_DIR) / "docs";
-      o.bench_dir = !bench_dir.empty() ? fs::path(bench_dir)
-                    : fs::is_directory("bench/results") ? fs::path("bench/results")
-                                                       : fs::path(DEM2D_SOURCE_DIR) / "bench/results";
-      print_summary(studies_dir);
-      const report::Written w = report::write_report(o);
-      fmt::print("report: {} studies, {} figures\n  {}\n  {}\n", w.studies, w.figures, fs::absolute(w.html).string(),
-                 fs::absolute(w.markdown).string());
-      return 0;
-    }
-  } catch (const dem::CaseError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return 2;
-  } catch (const dem::OutputError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return 4;
-  } catch (const ver::StudyInterrupted& e) {
-    fmt::print(stderr, "interrupted: {} (finished runs are cached; run the study again to continue)\n", e.what());
-    return interrupted_exit();
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return 2;
-  }
-  return 0;
+  return dispatch(o, argc, argv);
 }

@@ -108,6 +108,23 @@ struct Reader {
   std::map<std::string, std::int32_t> material_index, drive_index, wall_index;
   std::int32_t next_group = 0;
 
+  // The tables of a case file, one function each (defined below, after the helpers they call); read_case
+  // calls them in the order of the file format, each table may refer to those before it.
+  void read_case_table(const TableReader& top);
+  void read_physics(const TableReader& top);
+  void read_materials(const TableReader& top, std::vector<double>& base_mu, std::string& base_mu_line);
+  void read_drives(const TableReader& top);
+  void read_elements(const TableReader& top);
+  void read_lattices(const TableReader& top);
+  void read_rows(const TableReader& top);
+  void read_walls(const TableReader& top);
+  void check_laws_and_masses(const TableReader& top) const;
+  void read_numerics(const TableReader& top);
+  void read_output(const TableReader& top);
+  void read_discharge(const TableReader& top);
+  void read_stop(const TableReader& top);
+  void read_probes(const TableReader& top);
+
   /// Iterates an array of tables `name` ([[name]] in TOML).
   template <class F>
   void each(const TableReader& top, const std::string& name, F&& f) {
@@ -495,21 +512,8 @@ ProbeKind probe_kind(const std::string& s) {
   return ProbeKind::contact_duration;
 }
 
-}  // namespace
-
-Case read_case(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
-  const std::string file = path.string();
-  toml::table root = parse_toml_file(path);
-  for (const auto& kv : overrides) apply_override(root, kv);
-
-  Case c;
-  c.path = path;
-  c.overrides = overrides;
-  Reader rd{file, c, {}, {}, {}, 0};
-  Model& m = c.model;
-  TableReader top(root, "", file);
-
-  // [case]
+/// [case]: the title and the source.
+void Reader::read_case_table(const TableReader& top) {
   if (const toml::table* t = top.table("case")) {
     TableReader r(*t, "case", file);
     c.title = r.string("title");
@@ -518,11 +522,15 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
   } else {
     top.fail("case", "missing [case] table with a title");
   }
-  // [physics]
+}
+
+/// [physics]: thickness and gravity.
+void Reader::read_physics(const TableReader& top) {
+  Model& m = c.model;
   if (const toml::table* t = top.table("physics")) {
     TableReader r(*t, "physics", file);
     m.thickness = r.quantity("thickness", dims::length, 1.0);
-    rd.positive(r, "thickness", m.thickness);
+    positive(r, "thickness", m.thickness);
     if (r.has("gravity") && r.node("gravity")->is_table()) {
       TableReader g(*r.table("gravity"), "physics.gravity", file);
       const double mag = g.quantity("magnitude", dims::acceleration);
@@ -534,25 +542,32 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     }
     r.finish();
   }
-  // [[material]]
-  std::vector<double> base_mu;   // μ_B per material (base friction, M21)
-  std::string base_mu_line;      // where one was given
-  rd.each(top, "material", [&](TableReader& r, std::size_t) {
+}
+
+/// [[material]]: name, density and μ_B (base friction, M21) per material; every material pair
+/// starts without a law.
+void Reader::read_materials(const TableReader& top, std::vector<double>& base_mu, std::string& base_mu_line) {
+  Model& m = c.model;
+  each(top, "material", [&](TableReader& r, std::size_t) {
     Material mat;
     mat.name = r.string("name");
     mat.density = r.quantity("density", dims::density, 0.0);
-    if (rd.material_index.count(mat.name)) r.fail("name", fmt::format("material \"{}\" declared twice", mat.name));
-    rd.non_negative(r, "density", mat.density);
+    if (material_index.count(mat.name)) r.fail("name", fmt::format("material \"{}\" declared twice", mat.name));
+    non_negative(r, "density", mat.density);
     base_mu.push_back(r.number("base_friction", 0.0));  // μ_B (M21)
-    rd.non_negative(r, "base_friction", base_mu.back());
+    non_negative(r, "base_friction", base_mu.back());
     if (r.has("base_friction")) base_mu_line = where(*r.node("base_friction"), file);
-    rd.material_index[mat.name] = static_cast<std::int32_t>(m.materials.size());
+    material_index[mat.name] = static_cast<std::int32_t>(m.materials.size());
     m.materials.push_back(mat);
   });
   if (m.materials.empty()) top.fail("material", "missing: declare at least one [[material]]");
   m.law_of_pair.assign(m.materials.size() * m.materials.size(), -1);
-  // [[drive]]
-  rd.each(top, "drive", [&](TableReader& r, std::size_t) {
+}
+
+/// [[drive]]: a velocity, constant or piecewise linear in time, by name.
+void Reader::read_drives(const TableReader& top) {
+  Model& m = c.model;
+  each(top, "drive", [&](TableReader& r, std::size_t) {
     const std::string name = r.string("name");
     VelocityHistory h;
     if (r.has("velocity")) {
@@ -575,20 +590,20 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
                        r.quantity_of(*v->get(1), "velocities", dims::velocity)});
       }
     }
-    if (rd.drive_index.count(name)) r.fail("name", fmt::format("drive \"{}\" declared twice", name));
-    rd.drive_index[name] = static_cast<std::int32_t>(m.drives.size());
+    if (drive_index.count(name)) r.fail("name", fmt::format("drive \"{}\" declared twice", name));
+    drive_index[name] = static_cast<std::int32_t>(m.drives.size());
     m.drives.push_back(h);
   });
-  std::string v_eps_location;
-  read_base_friction(top, rd, base_mu, base_mu_line, v_eps_location);
-  // [[contact]]
-  rd.each(top, "contact", [&](TableReader& r, std::size_t) { rd.read_contact(r); });
-  // [[element]]
-  rd.each(top, "element", [&](TableReader& r, std::size_t) {
-    const auto ec = rd.common(r);
+}
+
+/// [[element]]: one element each, with an optional preload.
+void Reader::read_elements(const TableReader& top) {
+  Model& m = c.model;
+  each(top, "element", [&](TableReader& r, std::size_t) {
+    const auto ec = common(r);
     const Vec2 pos = r.vector("position", dims::length);
     const double rot = r.quantity("rotation", dims::angle, 0.0);
-    const std::size_t idx = rd.place(ec, pos, rot, -1);
+    const std::size_t idx = place(ec, pos, rot, -1);
     if (const toml::table* pt = r.table("preload")) {
       TableReader pr(*pt, r.key_path("preload"), file);
       Preload p;
@@ -599,42 +614,51 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
       m.preloads.push_back(p);
     }
   });
+}
+
+/// [[lattice]]: a grid of elements, bonded into a group by default.
+void Reader::read_lattices(const TableReader& top) {
   // [[lattice]]: columns × rows elements, axes rotated by `rotation`, spacing 2r by default
-  rd.each(top, "lattice", [&](TableReader& r, std::size_t) {
-    const auto ec = rd.common(r);
+  each(top, "lattice", [&](TableReader& r, std::size_t) {
+    const auto ec = common(r);
     const Vec2 origin = r.vector("origin", dims::length);
     const auto nx = r.integer("columns", 1, 100000), ny = r.integer("rows", 1, 100000);
-    rd.room_for(r, "rows", nx * ny);
+    room_for(r, "rows", nx * ny);
     const double spacing = r.quantity("spacing", dims::length, 2.0 * ec.radius);
-    rd.positive(r, "spacing", spacing);
+    positive(r, "spacing", spacing);
     const double rot = r.quantity("rotation", dims::angle, 0.0);
     const bool bonded = r.boolean("bonded", true);
-    const std::int32_t group = bonded ? rd.next_group++ : -1;
+    const std::int32_t group = bonded ? next_group++ : -1;
     const Vec2 ex{std::cos(rot), std::sin(rot)}, ey = perp(ex);
     const Vec2 far = origin + ex * (spacing * static_cast<double>(nx - 1)) + ey * (spacing * static_cast<double>(ny - 1));
     if (!std::isfinite(far.x) || !std::isfinite(far.y))
       r.fail("spacing", fmt::format("the lattice reaches a position that is not a finite number ({}, {})", far.x, far.y));
     for (std::int64_t b = 0; b < ny; ++b)
       for (std::int64_t a = 0; a < nx; ++a)
-        rd.place(ec, origin + ex * (spacing * a) + ey * (spacing * b), rot, group);
+        place(ec, origin + ex * (spacing * a) + ey * (spacing * b), rot, group);
   });
+}
+
+/// [[row]]: elements in a line.
+void Reader::read_rows(const TableReader& top) {
   // [[row]]: count elements from `start` along `step`
-  rd.each(top, "row", [&](TableReader& r, std::size_t) {
-    const auto ec = rd.common(r);
+  each(top, "row", [&](TableReader& r, std::size_t) {
+    const auto ec = common(r);
     const Vec2 start = r.vector("start", dims::length);
     const Vec2 step = r.vector("step", dims::length);
     const auto n = r.integer("count", 1, 10000000);
-    rd.room_for(r, "count", n);
+    room_for(r, "count", n);
     const Vec2 far = start + step * static_cast<double>(n - 1);
     if (!std::isfinite(far.x) || !std::isfinite(far.y))
       r.fail("step", fmt::format("the row reaches a position that is not a finite number ({}, {})", far.x, far.y));
-    for (std::int64_t k = 0; k < n; ++k) rd.place(ec, start + step * static_cast<double>(k), 0.0, -1);
+    for (std::int64_t k = 0; k < n; ++k) place(ec, start + step * static_cast<double>(k), 0.0, -1);
   });
-  // [[arrangement]]: generated fills (generators.hpp, refs §6.1)
-  rd.each(top, "arrangement", [&](TableReader& r, std::size_t) { rd.read_arrangement(r); });
-  if (m.elements.size() == 0) top.fail_here("no elements: give [[element]], [[lattice]], [[row]] or [[arrangement]] tables");
-  // [[wall]]
-  rd.each(top, "wall", [&](TableReader& r, std::size_t k) {
+}
+
+/// [[wall]]: segment and point walls, fixed or driven, by name.
+void Reader::read_walls(const TableReader& top) {
+  Model& m = c.model;
+  each(top, "wall", [&](TableReader& r, std::size_t k) {
     Wall w;
     w.name = r.string("name", fmt::format("wall{}", k));
     const std::string type = r.choice("type", {"segment", "point"}, "segment");
@@ -646,35 +670,41 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     } else {
       w.a = w.b = r.vector("at", dims::length);
     }
-    w.material = rd.material(r, "material");
+    w.material = material(r, "material");
     if (r.has("drive")) {
       const std::string d = r.string("drive");
-      auto it = rd.drive_index.find(d);
-      if (it == rd.drive_index.end()) r.fail("drive", fmt::format("unknown drive \"{}\"", d));
+      auto it = drive_index.find(d);
+      if (it == drive_index.end()) r.fail("drive", fmt::format("unknown drive \"{}\"", d));
       w.drive = it->second;
     }
-    if (rd.wall_index.count(w.name)) r.fail("name", fmt::format("wall \"{}\" declared twice", w.name));
-    rd.wall_index[w.name] = static_cast<std::int32_t>(m.walls.size());
+    if (wall_index.count(w.name)) r.fail("name", fmt::format("wall \"{}\" declared twice", w.name));
+    wall_index[w.name] = static_cast<std::int32_t>(m.walls.size());
     m.walls.push_back(w);
   });
-  // every material pair that can meet needs a law
-  {
-    std::vector<int> used(m.materials.size(), 0), wall_used(m.materials.size(), 0);
-    for (auto mat : m.elements.material) ++used[static_cast<std::size_t>(mat)];
-    for (const auto& w : m.walls) wall_used[static_cast<std::size_t>(w.material)] = 1;
-    for (std::size_t a = 0; a < used.size(); ++a) {
-      for (std::size_t b = 0; b < used.size(); ++b) {
-        const bool elements_meet = used[a] && used[b] && (a != b || used[a] > 1);
-        if (!used[a] || !(elements_meet || wall_used[b])) continue;
-        if (m.law_of_pair[a * used.size() + b] < 0)
-          top.fail("contact", fmt::format("missing [[contact]] between \"{}\" and \"{}\"", m.materials[a].name, m.materials[b].name));
-      }
+}
+
+/// Every material pair that can meet needs a law; every element a mass.
+void Reader::check_laws_and_masses(const TableReader& top) const {
+  const Model& m = c.model;
+  std::vector<int> used(m.materials.size(), 0), wall_used(m.materials.size(), 0);
+  for (auto mat : m.elements.material) ++used[static_cast<std::size_t>(mat)];
+  for (const auto& w : m.walls) wall_used[static_cast<std::size_t>(w.material)] = 1;
+  for (std::size_t a = 0; a < used.size(); ++a) {
+    for (std::size_t b = 0; b < used.size(); ++b) {
+      const bool elements_meet = used[a] && used[b] && (a != b || used[a] > 1);
+      if (!used[a] || !(elements_meet || wall_used[b])) continue;
+      if (m.law_of_pair[a * used.size() + b] < 0)
+        top.fail("contact", fmt::format("missing [[contact]] between \"{}\" and \"{}\"", m.materials[a].name, m.materials[b].name));
     }
-    for (std::size_t i = 0; i < m.elements.size(); ++i)
-      if (!(m.elements.mass[i] > 0.0) || !std::isfinite(m.elements.mass[i]))
-        top.fail("material", fmt::format("element {} has no mass: give its material a density or the element a mass", i));
   }
-  // [numerics]
+  for (std::size_t i = 0; i < m.elements.size(); ++i)
+    if (!(m.elements.mass[i] > 0.0) || !std::isfinite(m.elements.mass[i]))
+      top.fail("material", fmt::format("element {} has no mass: give its material a density or the element a mass", i));
+}
+
+/// [numerics]: integrator, velocity start, Δt, duration, skin and the blow-up bounds.
+void Reader::read_numerics(const TableReader& top) {
+  Model& m = c.model;
   if (const toml::table* t = top.table("numerics")) {
     TableReader r(*t, "numerics", file);
     Numerics& n = m.numerics;
@@ -682,16 +712,16 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     n.velocity_start = r.choice("velocity_start", {"plain", "staggered"}, "plain") == "plain" ? VelocityStart::plain : VelocityStart::staggered;
     n.dt = r.quantity("dt", dims::time);
     if (const toml::node* dtn = r.node("dt")) c.dt_location = where(*dtn, file);
-    rd.positive(r, "dt", n.dt);
+    positive(r, "dt", n.dt);
     n.duration = r.quantity("duration", dims::time);
-    rd.positive(r, "duration", n.duration);
+    positive(r, "duration", n.duration);
     n.skin = r.quantity("skin", dims::length, 0.0);
-    rd.non_negative(r, "skin", n.skin);
+    non_negative(r, "skin", n.skin);
     n.allow_unstable = r.boolean("allow_unstable", false);
     n.energy_limit = r.quantity("energy_limit", dims::energy, 0.0);
-    rd.non_negative(r, "energy_limit", n.energy_limit);
+    non_negative(r, "energy_limit", n.energy_limit);
     n.max_step_fraction = r.number("max_step_fraction", 0.25);
-    rd.positive(r, "max_step_fraction", n.max_step_fraction);
+    positive(r, "max_step_fraction", n.max_step_fraction);
     // spatial reordering every this many neighbour-list rebuilds (core/spatial_order.hpp); 0: never
     n.reorder_every = r.integer("reorder_every", 0, std::int64_t{1} << 40, 0);
     if (n.reorder_every > 0)
@@ -708,8 +738,11 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
   } else {
     top.fail("numerics", "missing [numerics] table (dt, duration)");
   }
-  check_base_friction_rate(m, v_eps_location);
-  // [output]
+}
+
+/// [output]: series, VTK snapshots and force-network pictures.
+void Reader::read_output(const TableReader& top) {
+  Model& m = c.model;
   if (const toml::table* t = top.table("output")) {
     TableReader r(*t, "output", file);
     c.output.every = r.integer("every", 0, std::int64_t{1} << 40, 0);
@@ -721,7 +754,7 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     OutputSpec& o = c.output;
     o.pictures = r.boolean("pictures", false);
     o.picture_every = r.quantity("picture_every", dims::time, 0.0);
-    rd.non_negative(r, "picture_every", o.picture_every);
+    non_negative(r, "picture_every", o.picture_every);
     if (o.picture_every > 0.0 && o.picture_every < m.numerics.dt)
       r.fail("picture_every", fmt::format("{:.6g} s is shorter than dt = {:.6g} s; a picture interval of at least one step",
                                           o.picture_every, m.numerics.dt));
@@ -742,9 +775,14 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     }
     o.picture_width = r.integer("picture_width", 64, 8000, 800);
     o.picture_max_force = r.optional_quantity("picture_max_force", dims::force);
-    if (o.picture_max_force) rd.positive(r, "picture_max_force", *o.picture_max_force);
+    if (o.picture_max_force) positive(r, "picture_max_force", *o.picture_max_force);
     r.finish();
   }
+}
+
+/// [discharge]: the slit wall, when it opens, the outlet line and the keystone rule.
+void Reader::read_discharge(const TableReader& top) {
+  Model& m = c.model;
   // [discharge]: a silo's discharge stage (core/discharge.hpp): the slit wall is opened, disks below the
   // outlet line are removed, a stalled arch loses its keystone
   if (const toml::table* t = top.table("discharge")) {
@@ -752,45 +790,53 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
     Discharge& d = m.discharge;
     d.enabled = true;
     const std::string slit = r.string("slit");
-    auto it = rd.wall_index.find(slit);
-    if (it == rd.wall_index.end()) r.fail("slit", fmt::format("unknown wall \"{}\" (expected the name of the wall that closes the slit)", slit));
+    auto it = wall_index.find(slit);
+    if (it == wall_index.end()) r.fail("slit", fmt::format("unknown wall \"{}\" (expected the name of the wall that closes the slit)", slit));
     d.slit = it->second;
     Wall& w = m.walls[static_cast<std::size_t>(d.slit)];
     if (w.kind != WallKind::segment) r.fail("slit", fmt::format("wall \"{}\" is a point wall; expected a segment wall across the slit", slit));
     if (w.drive >= 0) r.fail("slit", fmt::format("wall \"{}\" is driven; expected a fixed wall", slit));
     d.open_at = r.quantity("open_at", dims::time, 0.0);
-    rd.non_negative(r, "open_at", d.open_at);
+    non_negative(r, "open_at", d.open_at);
     w.open = d.open_at == 0.0;  // else the run opens it at open_at
     d.outlet_depth = r.quantity("outlet_depth", dims::length);
-    rd.non_negative(r, "outlet_depth", d.outlet_depth);
+    non_negative(r, "outlet_depth", d.outlet_depth);
     d.keystone_after = r.quantity("keystone_after", dims::time, 0.0);
-    rd.non_negative(r, "keystone_after", d.keystone_after);
+    non_negative(r, "keystone_after", d.keystone_after);
     if (!(norm(m.gravity) > 0.0)) r.fail_here("a discharge needs gravity (the outlet line lies below the slit along g)");
     r.finish();
   }
-  // [stop]
+}
+
+/// [stop]: the settle criteria and after_peak.
+void Reader::read_stop(const TableReader& top) {
+  Model& m = c.model;
   if (const toml::table* t = top.table("stop")) {
     TableReader r(*t, "stop", file);
     c.stop.settled_increment = r.optional_quantity("settled_increment", dims::length);
-    if (c.stop.settled_increment) rd.positive(r, "settled_increment", *c.stop.settled_increment);
+    if (c.stop.settled_increment) positive(r, "settled_increment", *c.stop.settled_increment);
     if (r.has("settled_increment_factor")) {
       c.stop.settled_increment_factor = r.number("settled_increment_factor");
-      rd.positive(r, "settled_increment_factor", *c.stop.settled_increment_factor);
+      positive(r, "settled_increment_factor", *c.stop.settled_increment_factor);
       if (!(norm(m.gravity) > 0.0)) r.fail("settled_increment_factor", "needs gravity (the threshold is factor·dt²·|g|)");
     }
     if (r.has("settled_force_ratio")) {
       c.stop.settled_force_ratio = r.number("settled_force_ratio");
-      rd.positive(r, "settled_force_ratio", *c.stop.settled_force_ratio);
+      positive(r, "settled_force_ratio", *c.stop.settled_force_ratio);
     }
     c.stop.settle_window = r.integer("settle_window", 1, std::int64_t{1} << 40, 1000);
     c.stop.settle_min_time = r.quantity("settle_min_time", dims::time, 0.0);
-    rd.non_negative(r, "settle_min_time", c.stop.settle_min_time);
+    non_negative(r, "settle_min_time", c.stop.settle_min_time);
     if (const toml::table* a = r.table("after_peak"))
       read_after_peak(TableReader(*a, "stop.after_peak", file), c.stop);
     r.finish();
   }
-  // [[probe]]
-  rd.each(top, "probe", [&](TableReader& r, std::size_t) {
+}
+
+/// [[probe]]: quantities of interest, each by name.
+void Reader::read_probes(const TableReader& top) {
+  Model& m = c.model;
+  each(top, "probe", [&](TableReader& r, std::size_t) {
     ProbeSpec p;
     p.name = r.string("name");
     p.kind = probe_kind(r.choice("kind", {"value", "max", "min", "mean", "time_of_max", "time_of_min", "crossing", "slope",
@@ -819,8 +865,8 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
       if (r.has("wall") == r.has("other")) r.fail_here("give exactly one of other (an element index) or wall (a wall name)");
       if (r.has("wall")) {
         const std::string w = r.string("wall");
-        auto it = rd.wall_index.find(w);
-        if (it == rd.wall_index.end()) r.fail("wall", fmt::format("unknown wall \"{}\"", w));
+        auto it = wall_index.find(w);
+        if (it == wall_index.end()) r.fail("wall", fmt::format("unknown wall \"{}\"", w));
         p.other = static_cast<std::uint32_t>(it->second);
         p.other_is_wall = true;
       } else {
@@ -831,6 +877,46 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
       if (q.name == p.name) r.fail("name", fmt::format("probe \"{}\" declared twice", p.name));
     c.probes.push_back(p);
   });
+}
+
+}  // namespace
+
+Case read_case(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  const std::string file = path.string();
+  toml::table root = parse_toml_file(path);
+  for (const auto& kv : overrides) apply_override(root, kv);
+
+  Case c;
+  c.path = path;
+  c.overrides = overrides;
+  Reader rd{file, c, {}, {}, {}, 0};
+  TableReader top(root, "", file);
+
+  // The tables in this order: each may refer to those before it (materials, drives, walls, Δt).
+  rd.read_case_table(top);
+  rd.read_physics(top);
+  std::vector<double> base_mu;   // μ_B per material (base friction, M21)
+  std::string base_mu_line;      // where one was given
+  rd.read_materials(top, base_mu, base_mu_line);
+  rd.read_drives(top);
+  std::string v_eps_location;
+  read_base_friction(top, rd, base_mu, base_mu_line, v_eps_location);
+  // [[contact]]
+  rd.each(top, "contact", [&](TableReader& r, std::size_t) { rd.read_contact(r); });
+  rd.read_elements(top);
+  rd.read_lattices(top);
+  rd.read_rows(top);
+  // [[arrangement]]: generated fills (generators.hpp, refs §6.1)
+  rd.each(top, "arrangement", [&](TableReader& r, std::size_t) { rd.read_arrangement(r); });
+  if (c.model.elements.size() == 0) top.fail_here("no elements: give [[element]], [[lattice]], [[row]] or [[arrangement]] tables");
+  rd.read_walls(top);
+  rd.check_laws_and_masses(top);
+  rd.read_numerics(top);
+  check_base_friction_rate(c.model, v_eps_location);
+  rd.read_output(top);
+  rd.read_discharge(top);
+  rd.read_stop(top);
+  rd.read_probes(top);
   top.finish();
 
   // The resolved case, for provenance.

@@ -31,7 +31,7 @@ struct Checkpoint {
   std::int64_t step = 0;
   double time = 0.0, dt = 0.0;
   std::string state;         // the Simulation's state, serialised (restore_simulation reads it)
-  std::vector<double> loop;  // the run loop's state (run.cpp)
+  std::vector<double> loop;  // the run loop's state (loop_state.hpp)
 };
 
 /// The hash of what determines a run's state: the resolved case without its `output` table and

@@ -44,6 +44,80 @@ QuantityFn corner_slide(std::size_t id, double alpha, const Model& m) {
   };
 }
 
+/// The error for a quantity name: `quantity "name": why`.
+std::invalid_argument bad_quantity(const std::string& name, const std::string& why) {
+  return std::invalid_argument(fmt::format("quantity \"{}\": {}", name, why));
+}
+
+/// e<i>.<field>, e<i>.gap|fn|fs|links.<other>: a quantity of element u (`p`: the name split on '.').
+QuantityFn element_quantity(const std::string& name, std::size_t u, const std::vector<std::string>& p, const Model& m) {
+  auto bad = [&](const std::string& why) { return bad_quantity(name, why); };
+  if (p.size() == 2) {
+    const std::string& f = p[1];
+    if (f == "x") return [u](const Simulation& s) { return s.model().elements.x[s.index_of(u)]; };
+    if (f == "y") return [u](const Simulation& s) { return s.model().elements.y[s.index_of(u)]; };
+    if (f == "phi") return [u](const Simulation& s) { return s.model().elements.phi[s.index_of(u)]; };
+    if (f == "vx") return [u](const Simulation& s) { return s.model().elements.vx[s.index_of(u)]; };
+    if (f == "vy") return [u](const Simulation& s) { return s.model().elements.vy[s.index_of(u)]; };
+    if (f == "omega") return [u](const Simulation& s) { return s.model().elements.omega[s.index_of(u)]; };
+    if (f == "fx") return [u](const Simulation& s) { return s.model().elements.fx[s.index_of(u)]; };
+    if (f == "fy") return [u](const Simulation& s) { return s.model().elements.fy[s.index_of(u)]; };
+    if (f == "moment") return [u](const Simulation& s) { return s.model().elements.moment[s.index_of(u)]; };
+    // px(a,b), py(a,b): a body point at the offset (a r, b r) in the element's own frame, e.g. the
+    // corner (1,-1) of a PRE's square
+    if ((f.rfind("px(", 0) == 0 || f.rfind("py(", 0) == 0) && f.back() == ')') {
+      const auto comma = f.find(',');
+      if (comma == std::string::npos) throw bad("expected px(a,b) or py(a,b)");
+      double a = 0.0, b = 0.0;
+      try {
+        a = std::stod(f.substr(3, comma - 3));
+        b = std::stod(f.substr(comma + 1, f.size() - comma - 2));
+      } catch (const std::exception&) {
+        throw bad("expected numbers in px(a,b) / py(a,b)");
+      }
+      const bool want_x = f[1] == 'x';
+      return [id = u, a, b, want_x](const Simulation& s) {
+        const Elements& e = s.model().elements;
+        const std::size_t u = s.index_of(id);
+        const double c = std::cos(e.phi[u]), sn = std::sin(e.phi[u]), r = e.radius[u];
+        return want_x ? e.x[u] + r * (c * a - sn * b) : e.y[u] + r * (sn * a + c * b);
+      };
+    }
+    throw bad("unknown element field (x, y, phi, vx, vy, omega, fx, fy, moment, px(a,b), py(a,b), gap.<other>, fn.<other>, fs.<other>)");
+  }
+  if (p.size() == 3 && (p[1] == "gap" || p[1] == "fn" || p[1] == "fs" || p[1] == "links")) {
+    long j = -1;
+    try {
+      j = element_ref(p[2], m);
+    } catch (const std::invalid_argument& e) {
+      throw bad(e.what());
+    }
+    const long w = j < 0 ? wall_ref(p[2], m) : -1;
+    if (j < 0 && w < 0) throw bad(fmt::format("\"{}\" is neither an element (e<i>) nor a wall name", p[2]));
+    const bool wall = j < 0;
+    const auto o = static_cast<std::uint32_t>(wall ? w : j);
+    if (p[1] == "gap")
+      return [id = u, other = o, wall](const Simulation& s) {
+        const Elements& e = s.model().elements;
+        const std::size_t u = s.index_of(id);
+        const std::uint32_t o = wall ? other : s.index_of(other);
+        const Vec2 c{e.x[u], e.y[u]};
+        if (wall) return norm(closest_point(s.model().walls[o], c) - c) - e.radius[u];
+        return std::hypot(e.x[o] - e.x[u], e.y[o] - e.y[u]) - e.radius[u] - e.radius[o];
+      };
+    if (p[1] == "links")
+      return [u, o, wall](const Simulation& s) {
+        return static_cast<double>(s.contact(s.index_of(static_cast<std::uint32_t>(u)), wall ? o : s.index_of(o), wall).links);
+      };
+    const bool normal = p[1] == "fn";
+    return [u, o, wall, normal](const Simulation& s) {
+      const ContactView c = s.contact(s.index_of(static_cast<std::uint32_t>(u)), wall ? o : s.index_of(o), wall);
+      return normal ? c.fn : c.fs;
+    };
+  }
+  throw bad("expected e<i>.<field> or e<i>.gap|fn|fs.<other>");
+}
+
 }  // namespace
 
 double mean_increment(const Simulation& s) {
@@ -79,9 +153,7 @@ double unbalanced_force_ratio(const Simulation& s) {
 
 QuantityFn compile_quantity(const std::string& name, const Model& m) {
   const auto p = split(name, '.');
-  auto bad = [&](const std::string& why) {
-    return std::invalid_argument(fmt::format("quantity \"{}\": {}", name, why));
-  };
+  auto bad = [&](const std::string& why) { return bad_quantity(name, why); };
   if (name == "t") return [](const Simulation& s) { return s.time(); };
   if (name == "step") return [](const Simulation& s) { return static_cast<double>(s.steps()); };
   if (name == "contacts") return [](const Simulation& s) { return static_cast<double>(s.contact_count()); };
@@ -175,73 +247,7 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
   } catch (const std::invalid_argument& e) {
     throw bad(e.what());
   }
-  if (i >= 0) {
-    const auto u = static_cast<std::size_t>(i);
-    if (p.size() == 2) {
-      const std::string& f = p[1];
-      if (f == "x") return [u](const Simulation& s) { return s.model().elements.x[s.index_of(u)]; };
-      if (f == "y") return [u](const Simulation& s) { return s.model().elements.y[s.index_of(u)]; };
-      if (f == "phi") return [u](const Simulation& s) { return s.model().elements.phi[s.index_of(u)]; };
-      if (f == "vx") return [u](const Simulation& s) { return s.model().elements.vx[s.index_of(u)]; };
-      if (f == "vy") return [u](const Simulation& s) { return s.model().elements.vy[s.index_of(u)]; };
-      if (f == "omega") return [u](const Simulation& s) { return s.model().elements.omega[s.index_of(u)]; };
-      if (f == "fx") return [u](const Simulation& s) { return s.model().elements.fx[s.index_of(u)]; };
-      if (f == "fy") return [u](const Simulation& s) { return s.model().elements.fy[s.index_of(u)]; };
-      if (f == "moment") return [u](const Simulation& s) { return s.model().elements.moment[s.index_of(u)]; };
-      // px(a,b), py(a,b): a body point at the offset (a r, b r) in the element's own frame, e.g. the
-      // corner (1,-1) of a PRE's square
-      if ((f.rfind("px(", 0) == 0 || f.rfind("py(", 0) == 0) && f.back() == ')') {
-        const auto comma = f.find(',');
-        if (comma == std::string::npos) throw bad("expected px(a,b) or py(a,b)");
-        double a = 0.0, b = 0.0;
-        try {
-          a = std::stod(f.substr(3, comma - 3));
-          b = std::stod(f.substr(comma + 1, f.size() - comma - 2));
-        } catch (const std::exception&) {
-          throw bad("expected numbers in px(a,b) / py(a,b)");
-        }
-        const bool want_x = f[1] == 'x';
-        return [id = u, a, b, want_x](const Simulation& s) {
-          const Elements& e = s.model().elements;
-          const std::size_t u = s.index_of(id);
-          const double c = std::cos(e.phi[u]), sn = std::sin(e.phi[u]), r = e.radius[u];
-          return want_x ? e.x[u] + r * (c * a - sn * b) : e.y[u] + r * (sn * a + c * b);
-        };
-      }
-      throw bad("unknown element field (x, y, phi, vx, vy, omega, fx, fy, moment, px(a,b), py(a,b), gap.<other>, fn.<other>, fs.<other>)");
-    }
-    if (p.size() == 3 && (p[1] == "gap" || p[1] == "fn" || p[1] == "fs" || p[1] == "links")) {
-      long j = -1;
-      try {
-        j = element_ref(p[2], m);
-      } catch (const std::invalid_argument& e) {
-        throw bad(e.what());
-      }
-      const long w = j < 0 ? wall_ref(p[2], m) : -1;
-      if (j < 0 && w < 0) throw bad(fmt::format("\"{}\" is neither an element (e<i>) nor a wall name", p[2]));
-      const bool wall = j < 0;
-      const auto o = static_cast<std::uint32_t>(wall ? w : j);
-      if (p[1] == "gap")
-        return [id = u, other = o, wall](const Simulation& s) {
-          const Elements& e = s.model().elements;
-          const std::size_t u = s.index_of(id);
-          const std::uint32_t o = wall ? other : s.index_of(other);
-          const Vec2 c{e.x[u], e.y[u]};
-          if (wall) return norm(closest_point(s.model().walls[o], c) - c) - e.radius[u];
-          return std::hypot(e.x[o] - e.x[u], e.y[o] - e.y[u]) - e.radius[u] - e.radius[o];
-        };
-      if (p[1] == "links")
-        return [u, o, wall](const Simulation& s) {
-          return static_cast<double>(s.contact(s.index_of(static_cast<std::uint32_t>(u)), wall ? o : s.index_of(o), wall).links);
-        };
-      const bool normal = p[1] == "fn";
-      return [u, o, wall, normal](const Simulation& s) {
-        const ContactView c = s.contact(s.index_of(static_cast<std::uint32_t>(u)), wall ? o : s.index_of(o), wall);
-        return normal ? c.fn : c.fs;
-      };
-    }
-    throw bad("expected e<i>.<field> or e<i>.gap|fn|fs.<other>");
-  }
+  if (i >= 0) return element_quantity(name, static_cast<std::size_t>(i), p, m);
   if (p.size() == 2) {
     const long w = wall_ref(p[0], m);
     if (w >= 0) {

@@ -1,0 +1,118 @@
+#include "dem/run/run_outputs.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "dem/cases/text.hpp"
+#include "dem/run/checkpoint.hpp"
+#include "dem/run/vtk_writer.hpp"
+
+namespace dem {
+
+RunOutputs::RunOutputs(const Case& c, const RunOptions& opt, std::vector<QuantityFn> series)
+    : c_(c),
+      opt_(opt),
+      write_(!opt.out_dir.empty()),
+      series_(std::move(series)),
+      picture_options_{static_cast<int>(c.output.picture_width), c.output.picture_max_force, 0.0} {}
+
+void RunOutputs::open(const Simulation& sim, std::int64_t total_steps) {
+  const OutputSpec& o = c_.output;
+  if (write_) {
+    prepare_run_folder(opt_.out_dir);
+    write_file_atomic(opt_.out_dir / "summary.json",
+                      nlohmann::json{{"case", c_.path.string()}, {"overrides", c_.overrides}, {"provenance", provenance()},
+                                     {"status", "running"}, {"case_hash", case_hash(c_)}}
+                              .dump(2) + "\n");
+    if (!series_.empty()) {
+      csv_.open(opt_.out_dir / "series.csv");
+      // one header line, each column with its unit ("t [s]"): pandas.read_csv reads it with its
+      // defaults; the case and the code version are in summary.json
+      std::string head;
+      for (std::size_t k = 0; k < series_.size(); ++k) head += (k ? "," : "") + csv_field(series_header(o.series[k]));
+      csv_.write(head + "\n");
+    }
+    if (o.vtk) std::filesystem::create_directories(opt_.out_dir / "vtk");
+    if (o.any_pictures()) std::filesystem::create_directories(opt_.out_dir / "pictures");
+  }
+  // Force-network pictures: the steps of the chosen times (the first step at or after each time).
+  if (write_ && o.any_pictures()) {
+    const double dt = sim.model().numerics.dt;
+    auto step_of = [&](double t) { return std::llround(std::ceil(t / dt - 1e-9)); };
+    if (o.picture_every > 0.0)
+      for (std::int64_t n = 1;; ++n) {
+        const std::int64_t k = step_of(static_cast<double>(n) * o.picture_every);
+        if (k > total_steps) break;
+        picture_steps_.push_back(k);
+      }
+    for (double t : o.picture_times)
+      if (step_of(t) <= total_steps) picture_steps_.push_back(step_of(t));
+    std::sort(picture_steps_.begin(), picture_steps_.end());
+    picture_steps_.erase(std::unique(picture_steps_.begin(), picture_steps_.end()), picture_steps_.end());
+  }
+  next_picture_ = static_cast<std::size_t>(
+      std::lower_bound(picture_steps_.begin(), picture_steps_.end(), sim.steps()) - picture_steps_.begin());
+}
+
+void RunOutputs::write_row(const Simulation& sim) {
+  if (!csv_.is_open()) return;
+  row_step_ = sim.steps();
+  row_.clear();
+  for (std::size_t k = 0; k < series_.size(); ++k) {
+    if (k) row_ += ',';
+    row_ += fmt::format("{:.17g}", series_[k](sim));
+  }
+  row_ += '\n';
+  csv_.write(row_);
+}
+
+void RunOutputs::checkpoint(const Simulation& sim, const std::vector<double>& loop) {
+  if (!write_) return;
+  write_checkpoint(opt_.out_dir / "checkpoint.bin", sim, c_, loop);
+  checkpoint_step_ = sim.steps();
+}
+
+void RunOutputs::snapshot(const Simulation& sim) {
+  if (!write_ || !c_.output.vtk) return;
+  snapshot_step_ = sim.steps();
+  const std::string name = fmt::format("snapshot_{:09d}.vtp", sim.steps());
+  write_vtp(opt_.out_dir / "vtk" / name, sim);
+  snapshots_.emplace_back(sim.time(), "vtk/" + name);
+}
+
+void RunOutputs::picture(const Simulation& sim, bool wanted) {
+  while (next_picture_ < picture_steps_.size() && picture_steps_[next_picture_] <= sim.steps()) {
+    wanted = wanted || picture_steps_[next_picture_] == sim.steps();
+    ++next_picture_;
+  }
+  if (!wanted || !write_ || picture_step_ == sim.steps()) return;
+  picture_step_ = sim.steps();
+  const std::string name = fmt::format("picture_{:09d}.png", sim.steps());
+  write_force_network_png(opt_.out_dir / "pictures" / name, sim, picture_options_);
+  pictures_.emplace_back(sim.time(), "pictures/" + name);
+}
+
+void RunOutputs::finish(const Simulation& sim, bool interrupted) {
+  if (!(interrupted && row_step_ == sim.steps())) write_row(sim);
+  if (!(interrupted && snapshot_step_ == sim.steps())) snapshot(sim);
+  picture(sim, c_.output.pictures);
+}
+
+void RunOutputs::commit(const Simulation& sim, nlohmann::json& summary, bool checkpoint_now,
+                        const std::vector<double>& loop) {
+  if (!pictures_.empty()) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& [t, name] : pictures_) list.push_back({{"time", t}, {"file", name}});
+    summary["pictures"] = list;
+  }
+  if (!write_) return;
+  if (checkpoint_now) checkpoint(sim, loop);
+  if (checkpoint_step_) summary["checkpoint"] = {{"file", "checkpoint.bin"}, {"step", *checkpoint_step_}};
+  csv_.commit();
+  if (c_.output.vtk) write_pvd(opt_.out_dir / "snapshots.pvd", snapshots_);
+  write_file_atomic(opt_.out_dir / "summary.json", summary.dump(2) + "\n");
+}
+
+}  // namespace dem
