@@ -3,8 +3,8 @@
 //             [--restart CHECKPOINT | --start-from CHECKPOINT]
 //                                                        run a case, write series.csv, summary.json, vtk/
 //   dem2d check CASE [--set key=value]...                check a case and print what it resolves to
-//   dem2d study STUDY [--out DIR] [--jobs N] [--fresh]   run one verification study (verification/*/study.toml)
-//   dem2d sweep STUDY [--out DIR] [--jobs N] [--fresh]   run one sensitivity study (verification/sensitivity_*/sensitivity.toml)
+//   dem2d study STUDY [--out DIR] [--jobs N] [--fresh] [-v]   run one verification study (verification/*/study.toml)
+//   dem2d sweep STUDY [--out DIR] [--jobs N] [--fresh] [-v]   run one sensitivity study (verification/sensitivity_*/sensitivity.toml)
 //   dem2d report [--studies DIR] [--out DIR]             write the verification report from study results
 #include <algorithm>
 #include <cmath>
@@ -126,6 +126,7 @@ struct Cli {
   std::string restart, start_from;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   bool fresh = false;
+  bool verbose = false;  // study, sweep: a line per finished run
   std::string studies_dir = "build/studies", report_dir = "build/report";
   std::string docs_dir, bench_dir;
   CLI::App *run = nullptr, *check = nullptr, *study = nullptr, *sweep = nullptr, *report = nullptr;
@@ -173,6 +174,8 @@ void add_study_and_sweep(CLI::App& app, Cli& o) {
   study->add_option("--out", o.out_dir, "Output folder (default build/studies/<name>)");
   study->add_option("-j,--jobs", o.jobs, "Runs in parallel")->check(CLI::PositiveNumber);
   study->add_flag("--fresh", o.fresh, "Clear the cache of finished runs in the study folder first (run everything again)");
+  study->add_flag("-v,--verbose", o.verbose,
+                  "A line per finished run on stderr (on a terminal a status line shows runs done, reused, time left)");
 
   auto* sweep = o.sweep =
       app.add_subcommand("sweep", "Run one sensitivity study (one-at-a-time, Morris, Sobol') and write its result.json");
@@ -181,6 +184,8 @@ void add_study_and_sweep(CLI::App& app, Cli& o) {
   sweep->add_option("--out", o.out_dir, "Output folder (default build/studies/<name>)");
   sweep->add_option("-j,--jobs", o.jobs, "Runs in parallel")->check(CLI::PositiveNumber);
   sweep->add_flag("--fresh", o.fresh, "Clear the cache of finished runs in the study folder first");
+  sweep->add_flag("-v,--verbose", o.verbose,
+                  "A line per finished run on stderr (on a terminal a status line shows runs done, reused, time left)");
 }
 
 void add_report(CLI::App& app, Cli& o) {
@@ -215,6 +220,7 @@ int cmd_study(const Cli& o, bool sweep) {
   so.out_dir = o.out_dir;
   so.jobs = o.jobs;
   so.use_cache = !o.fresh;
+  so.verbose = o.verbose;
   if (sweep) return ver::run_sensitivity(o.study_file, so).passed ? 0 : 1;
   const ver::StudyResult r = ver::run_study(o.study_file, so);
   return r.passed ? 0 : 1;
