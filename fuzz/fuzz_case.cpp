@@ -1,5 +1,5 @@
 // libFuzzer target: the whole text of a case file → read_case + check_case (what `dem2d check` does,
-// without running). Seeds: cases/**/*.toml and tests/lib/cases/*.toml; dictionary: case.dict.
+// without running). Seeds: cases/**/*.toml and tests/lib/fixtures/*.toml; dictionary: case.dict.
 #include "harness.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

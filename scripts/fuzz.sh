@@ -5,7 +5,7 @@
 #   scripts/fuzz.sh --seconds 60        60 s per target (CI)
 #   scripts/fuzz.sh --runs 20000        a fixed number of inputs per target (repeatable)
 #   --target case|override              one target only
-# The seeds are cases/, tests/lib/cases/ and fuzz/corpus/override/ (read only); what libFuzzer learns goes
+# The seeds are cases/, tests/lib/fixtures/ and fuzz/corpus/override/ (read only); what libFuzzer learns goes
 # to build-san/fuzz-work/<target>/. A finding (crash, sanitizer report, unlocated error) is written to
 # build-san/fuzz-findings/<target>/ and the script fails: fix it, then copy the input into
 # fuzz/regression/<target>/ so that ctest replays it.
@@ -39,7 +39,7 @@ status=0
 for t in "${targets[@]}"; do
   work=build-san/fuzz-work/$t; findings=build-san/fuzz-findings/$t
   mkdir -p "$work" "$findings"
-  if [ "$t" = case ]; then seeds=(cases tests/lib/cases fuzz/regression/case)
+  if [ "$t" = case ]; then seeds=(cases tests/lib/fixtures fuzz/regression/case)
   else seeds=(fuzz/corpus/override fuzz/regression/override); fi
   limit=(-max_total_time="$per_target_seconds")
   [ -n "$runs" ] && limit=(-runs="$runs")

@@ -89,7 +89,7 @@ std::string message_of(F&& f) {
 }
 
 /// Source folder of the tests' case files.
-inline std::filesystem::path case_dir() { return std::filesystem::path(DEM2D_SOURCE_DIR) / "tests/lib/cases"; }
+inline std::filesystem::path case_dir() { return std::filesystem::path(DEM2D_SOURCE_DIR) / "tests/lib/fixtures"; }
 
 /// The elements of `a` have the same state bit for bit in `b` (positions, rotations, velocities,
 /// rotation increments); `b` may hold more elements after them.

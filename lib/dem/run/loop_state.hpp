@@ -20,7 +20,7 @@ EnergyScale energy_scale(const Model& m, double e1);
 
 // The run loop's own state, for checkpoints: the blow-up bound and the settle window, then per probe
 // its accumulators. Every member of ProbeState that changes during a run must be listed here, or a
-// restart is no longer bit for bit (tests/lib/outputs_tests.cpp).
+// restart is no longer bit for bit (tests/lib/run/output_files_tests.cpp).
 struct LoopState {
   double energy_limit = 0.0, potential0 = 0.0;
   EnergyScale scale;

@@ -286,7 +286,7 @@ std::string quantity_unit(const std::string& name) {
   if (f == "omega") return "rad/s";
   if (f == "fx" || f == "fy") return "N";
   if (f == "moment") return "N*m";
-  return "unknown";  // a name compile_quantity accepts always has a unit above (tests/lib/run_tests.cpp)
+  return "unknown";  // a name compile_quantity accepts always has a unit above (tests/lib/run/run_tests.cpp)
 }
 
 std::string series_header(const std::string& name) { return name + " [" + quantity_unit(name) + "]"; }

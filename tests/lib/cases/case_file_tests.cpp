@@ -1,0 +1,226 @@
+// Case files (case_file.hpp): every error is reported before anything runs, as
+// `file:line: key: what was expected`; `--set` overrides change values (with units) and name
+// themselves in their errors. The error variants are tests/lib/fixtures/minimal.toml with one line
+// changed; the test finds that line's number itself.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "dem/cases/case_file.hpp"
+#include "../test_support.hpp"
+
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+using Catch::Matchers::WithinRel;
+
+namespace {
+
+std::string minimal_text() {
+  std::ifstream in(test::case_dir() / "minimal.toml");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Variant {
+  std::string path;  // the written file
+  int line = 0;      // 1-based line of the changed text
+};
+
+/// minimal.toml with the first occurrence of `from` replaced by `to` (plus `append` at the end),
+/// written to a temporary file named `name`.
+Variant variant(const std::string& name, const std::string& from, const std::string& to,
+                const std::string& append = "") {
+  std::string text = minimal_text();
+  const auto pos = text.find(from);
+  REQUIRE(pos != std::string::npos);
+  Variant v;
+  v.line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
+  text.replace(pos, from.size(), to);
+  v.path = test::write_temp(name, text + append).string();
+  return v;
+}
+
+std::string read_error(const std::string& path, const std::vector<std::string>& overrides = {}) {
+  return test::message_of<dem::CaseError>([&] { dem::read_case(path, overrides); });
+}
+
+std::string check_error(const std::string& path) {
+  return test::message_of<dem::CaseError>([&] { dem::check_case(dem::read_case(path)); });
+}
+
+std::string at(const Variant& v) { return v.path + ":" + std::to_string(v.line) + ": "; }
+
+std::string num(double x) {
+  char s[40];
+  std::snprintf(s, sizeof s, "%.17g", x);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("case file: the minimal case reads, with SI values", "[case]") {
+  const auto c = dem::read_case(test::case_dir() / "minimal.toml");
+  CHECK(c.title == "minimal");
+  REQUIRE(c.model.elements.size() == 1);
+  CHECK(c.model.elements.radius[0] == 0.01);
+  CHECK(c.model.elements.mass[0] == 0.5);
+  CHECK_THAT(c.model.elements.inertia[0], WithinRel(0.5 * 0.5 * 0.01 * 0.01, 1e-14));  // ½ m r²
+  REQUIRE(c.model.laws.size() == 1);
+  CHECK(c.model.laws[0].linear.kn == 1e5);
+  CHECK_THAT(c.model.laws[0].linear.ks, WithinRel(2.5e4, 1e-15));
+  CHECK(c.model.laws[0].linear.mu == 0.5);
+  CHECK(c.model.numerics.dt == 1e-5);
+  CHECK(c.model.gravity.y == -9.81);
+  CHECK_NOTHROW(dem::check_case(c));
+}
+
+TEST_CASE("case file: malformed TOML gives file:line: syntax", "[case]") {
+  const auto v = variant("syntax.toml", "radius = \"1 cm\"", "radius = \"1 cm");
+  const auto msg = read_error(v.path);
+  CHECK_THAT(msg, StartsWith(at(v) + "syntax"));
+}
+
+TEST_CASE("case file: errors name file, line, key and what was expected", "[case]") {
+  struct Bad {
+    const char* name;
+    const char* from;
+    const char* to;
+    const char* key;
+    const char* expected;
+  };
+  const auto bad = GENERATE(
+      Bad{"unknown_key.toml", "mass = \"0.5 kg\"", "colour = \"red\"", "element.0.colour", "unknown key"},
+      Bad{"wrong_type.toml", "radius = \"1 cm\"", "radius = true", "element.0.radius",
+          "expected length as a number (SI) or a string with a unit, got a boolean"},
+      Bad{"wrong_dimension.toml", "mass = \"0.5 kg\"", "mass = \"25 mm\"", "element.0.mass", "expected a mass"},
+      Bad{"negative_radius.toml", "radius = \"1 cm\"", "radius = \"-1 cm\"", "element.0.radius", "must be positive"},
+      Bad{"negative_mu.toml", "friction = 0.5", "friction = -0.1", "contact.0.friction", "must not be negative"},
+      Bad{"unknown_material.toml", "material = \"sand\"", "material = \"clay\"", "element.0.material",
+          "unknown material \"clay\""},
+      Bad{"stiffness_unit.toml", "kn = \"1e5 N/m\"", "kn = \"1e5 N\"", "contact.0.kn", "expected stiffness"},
+      Bad{"bad_choice.toml", "law = \"linear\"", "law = \"hertz\"", "contact.0.law",
+          "expected one of \"linear\", \"face\""});
+  CAPTURE(bad.name);
+  const auto v = variant(bad.name, bad.from, bad.to);
+  const auto msg = read_error(v.path);
+  CHECK_THAT(msg, StartsWith(at(v) + bad.key + ": "));
+  CHECK_THAT(msg, Contains(bad.expected));
+}
+
+TEST_CASE("case file: a missing key names the table's line", "[case]") {
+  const auto v = variant("missing_key.toml", "radius = \"1 cm\"\n", "");
+  const auto msg = read_error(v.path);
+  // the [[element]] header is two lines above the removed radius
+  CHECK_THAT(msg, StartsWith(v.path + ":" + std::to_string(v.line - 2) + ": element.0.radius: "));
+  CHECK_THAT(msg, Contains("missing"));
+}
+
+TEST_CASE("case file: a time step above the stability limit names the limit and allow_unstable", "[case]") {
+  // Without shear (ks = 0) the assembly is one mass on a spring–dashpot: m = 0.5 kg, K = 1e5 N/m,
+  // ζ = 0.3 → K18 limit Δt = 2(√(1 + ζ²) − ζ)/ω₀ (docs/references.md §1.5) = 1.488061/447.2136 s.
+  const double limit = 2.0 * (std::sqrt(1.09) - 0.3) / std::sqrt(1e5 / 0.5);
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", limit);
+  const auto v = variant("unstable.toml", "ks_ratio = 0.25", "ks_ratio = 0.0");
+  // inside the limit: fine; above it: refused; with allow_unstable: accepted
+  auto c = dem::read_case(v.path, {"numerics.dt=" + num(0.99 * limit)});
+  CHECK_THAT(dem::check_case(c), WithinRel(limit, 1e-12));
+  const auto msg = test::message_of<dem::CaseError>(
+      [&] { dem::check_case(dem::read_case(v.path, {"numerics.dt=" + num(1.01 * limit)})); });
+  // The value came from --set, and the message says so (a value from the file names file:line).
+  CHECK_THAT(msg, StartsWith("--set numerics.dt=" + num(1.01 * limit) + ": numerics.dt: "));
+  CHECK_THAT(msg, Contains(std::string("stability limit ") + text + " s"));
+  const auto in_file = variant("unstable_in_file.toml", "ks_ratio = 0.25", "ks_ratio = 0.0");
+  const auto msg2 = test::message_of<dem::CaseError>([&] {
+    auto c2 = dem::read_case(in_file.path);
+    c2.model.numerics.dt = 1.01 * limit;  // as if the file had said so: the location is the file's line
+    dem::check_case(c2);
+  });
+  CHECK_THAT(msg2, StartsWith(in_file.path + ":") && Contains(": numerics.dt: "));
+  CHECK_THAT(msg, Contains("allow_unstable"));
+  c = dem::read_case(v.path, {"numerics.dt=" + num(1.01 * limit), "numerics.allow_unstable=true"});
+  CHECK_NOTHROW(dem::check_case(c));
+}
+
+TEST_CASE("case file: overlapping fixed geometry is refused", "[case]") {
+  const std::string fixed = R"(
+[[contact]]
+between = ["sand", "sand"]
+law = "linear"
+kn = "1e5 N/m"
+friction = 0.5
+damping_ratio = 0.3
+
+[[element]]
+material = "sand"
+radius = "1 cm"
+position = ["0 m", "10 cm"]
+motion = "fixed"
+
+[[element]]
+material = "sand"
+radius = "1 cm"
+position = ["1.5 cm", "10 cm"]
+motion = "fixed"
+)";
+  const auto v = variant("fixed_overlap.toml", "# Unit-test case", "# Unit-test case", fixed);
+  const auto msg = check_error(v.path);
+  CHECK_THAT(msg, StartsWith(v.path + ": elements 1 and 2 overlap by 0.005 m"));
+  CHECK_THAT(msg, Contains("overlapping fixed geometry"));
+  // the same two elements free may touch slightly, but 0.5 cm is 50 % of a radius
+  const auto v2 = variant("free_overlap.toml", "# Unit-test case", "# Unit-test case", [&] {
+    std::string s = fixed;
+    for (auto p = s.find("motion = \"fixed\""); p != std::string::npos; p = s.find("motion = \"fixed\""))
+      s.erase(p, 16);
+    return s;
+  }());
+  CHECK_THAT(check_error(v2.path), Contains("more than 5 % of a radius"));
+}
+
+TEST_CASE("case file: --set changes values, with units", "[case]") {
+  const auto path = test::case_dir() / "minimal.toml";
+  const auto c = dem::read_case(path, {"numerics.dt=2e-6", "contact.0.kn=12 kN/mm", "contact.0.friction=0.25",
+                                       "element.0.radius=\"2 cm\"", "numerics.skin=1 mm"});
+  CHECK(c.model.numerics.dt == 2e-6);
+  CHECK_THAT(c.model.laws[0].linear.kn, WithinRel(1.2e7, 1e-15));
+  CHECK_THAT(c.model.laws[0].linear.ks, WithinRel(0.25 * 1.2e7, 1e-15));  // ks_ratio applies to the new kn
+  CHECK(c.model.laws[0].linear.mu == 0.25);
+  CHECK(c.model.elements.radius[0] == 0.02);
+  CHECK(c.model.numerics.skin == 1e-3);
+  CHECK(c.overrides.size() == 5);
+  CHECK(c.resolved["numerics"]["dt"] == 2e-6);
+}
+
+TEST_CASE("case file: --set with a bad path names --set", "[case]") {
+  const auto path = (test::case_dir() / "minimal.toml").string();
+  CHECK_THAT(read_error(path, {"contact.3.kn=1"}),
+             StartsWith("--set contact.3.kn=1: contact.3: ") && Contains("index below 1"));
+  CHECK_THAT(read_error(path, {"numerics.dt.x=1"}), StartsWith("--set numerics.dt.x=1: ") && Contains("numerics.dt"));
+  CHECK_THAT(read_error(path, {"numerics.dt"}), StartsWith("--set numerics.dt: ") && Contains("key=value"));
+}
+
+// An override's value keeps its origin ("--set key=value") for error messages: apply_override moves the
+// parsed node into the tree (toml++ keeps the source of a moved node, not of a copied one).
+TEST_CASE("case file: --set with a bad value names --set, the key and what was expected", "[case]") {
+  const auto path = (test::case_dir() / "minimal.toml").string();
+  CHECK_THAT(read_error(path, {"numerics.dt=abc"}), StartsWith("--set numerics.dt=abc: numerics.dt: "));
+  CHECK_THAT(read_error(path, {"numerics.dt=-1e-6"}),
+             StartsWith("--set numerics.dt=-1e-6: numerics.dt: ") && Contains("must be positive"));
+  CHECK_THAT(read_error(path, {"element.0.mass=25 mm"}),
+             StartsWith("--set element.0.mass=25 mm: element.0.mass: ") && Contains("expected a mass"));
+  CHECK_THAT(read_error(path, {"numerics.dtt=1"}),
+             StartsWith("--set numerics.dtt=1: numerics.dtt: ") && Contains("unknown key"));
+}
+
+TEST_CASE("case file: --set with a bad value is refused with the key and what was expected", "[case]") {
+  // the part that holds today, whatever the location prefix
+  const auto path = (test::case_dir() / "minimal.toml").string();
+  CHECK_THAT(read_error(path, {"numerics.dt=-1e-6"}), Contains("numerics.dt: must be positive"));
+  CHECK_THAT(read_error(path, {"element.0.mass=25 mm"}), Contains("element.0.mass: expected a mass"));
+  CHECK_THAT(read_error(path, {"numerics.dtt=1"}), Contains("numerics.dtt: unknown key"));
+}
