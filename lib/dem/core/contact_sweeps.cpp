@@ -1,6 +1,9 @@
 // Simulation's contact sweeps (simulation.hpp): every slot's contact law in slot order, the linear pairs
 // and walls (K3, K5–K15) and the face pairs and walls (M3–M12, M19), with the constants a contact starts
-// with (start_linear, linear_dashpots, face_constants); the walls' reactions.
+// with (start_linear, linear_dashpots, face_constants); the walls' reactions. The sweeps of one thread
+// (sweep_scatter) and of a thread's share (sweep_share) are here, with the sweeps: a function with AVX2
+// clones (DEM2D_CLONES_AVX2) is called only from the file that defines it (a resolver emitted in another file
+// does not find the clones at link time).
 #include "dem/core/simulation.hpp"
 
 #include <algorithm>
@@ -21,6 +24,8 @@ void weight(double* __restrict fx, double* __restrict fy, const double* __restri
 }
 
 }  // namespace step_detail
+
+using step_detail::weight;
 
 namespace {
 
@@ -43,6 +48,20 @@ void Simulation::sweep_scatter(double inv_dt) {
   sweep_face_pairs<false>(inv_dt, 0, face_pairs_.size());
   sweep_linear_walls<false>(inv_dt, 0, linear_walls_.size());
   sweep_face_walls<false>(inv_dt, 0, face_walls_.size());
+}
+
+void Simulation::sweep_share(double inv_dt, std::size_t k, bool from_weight) {
+  const std::size_t b = shares_.first[k], end = shares_.first[k + 1];
+  if (from_weight) {  // (K15): gravity; the shared elements start from it in gather_forces
+    Elements& e = m_.elements;
+    weight(e.fx.data() + b, e.fy.data() + b, e.mass.data() + b, m_.gravity, end - b);
+    std::fill(e.moment.begin() + static_cast<std::ptrdiff_t>(b), e.moment.begin() + static_cast<std::ptrdiff_t>(end), 0.0);
+  }
+  const auto& sl = shares_.slots;
+  sweep_linear_pairs<true>(inv_dt, sl[0][k], sl[0][k + 1]);
+  sweep_face_pairs<true>(inv_dt, sl[1][k], sl[1][k + 1]);
+  sweep_linear_walls<true>(inv_dt, sl[2][k], sl[2][k + 1]);
+  sweep_face_walls<true>(inv_dt, sl[3][k], sl[3][k + 1]);
 }
 
 /// The walls' reactions, in slot order (linear wall slots, then face wall slots), as the sweeps summed them.
@@ -396,10 +415,5 @@ void Simulation::sweep_face_walls(double inv_dt, std::size_t b, std::size_t end)
     }
   }
 }
-
-template void Simulation::sweep_linear_pairs<true>(double, std::size_t, std::size_t);
-template void Simulation::sweep_face_pairs<true>(double, std::size_t, std::size_t);
-template void Simulation::sweep_linear_walls<true>(double, std::size_t, std::size_t);
-template void Simulation::sweep_face_walls<true>(double, std::size_t, std::size_t);
 
 }  // namespace dem

@@ -1,5 +1,5 @@
 // Simulation on several threads (simulation.hpp, thread_shares.hpp): the pool, the shares and their
-// balance, a thread's share of the sweeps, the sums of the shared elements in the contact index's fixed
+// balance, the sums of the shared elements in the contact index's fixed
 // order (gather_forces), and the step's job on the threads (step_on_threads).
 #include "dem/core/simulation.hpp"
 
@@ -13,7 +13,6 @@ namespace dem {
 
 using step_detail::any_displaced;
 using step_detail::take_worse;
-using step_detail::weight;
 
 namespace {
 
@@ -64,20 +63,6 @@ void Simulation::balance_if_uneven() {
     busy_.assign(busy_.size(), ThreadClock{});
     balance_steps_ = 0;
   }
-}
-
-void Simulation::sweep_share(double inv_dt, std::size_t k, bool from_weight) {
-  const std::size_t b = shares_.first[k], end = shares_.first[k + 1];
-  if (from_weight) {  // (K15): gravity; the shared elements start from it in gather_forces
-    Elements& e = m_.elements;
-    weight(e.fx.data() + b, e.fy.data() + b, e.mass.data() + b, m_.gravity, end - b);
-    std::fill(e.moment.begin() + static_cast<std::ptrdiff_t>(b), e.moment.begin() + static_cast<std::ptrdiff_t>(end), 0.0);
-  }
-  const auto& sl = shares_.slots;
-  sweep_linear_pairs<true>(inv_dt, sl[0][k], sl[0][k + 1]);
-  sweep_face_pairs<true>(inv_dt, sl[1][k], sl[1][k + 1]);
-  sweep_linear_walls<true>(inv_dt, sl[2][k], sl[2][k + 1]);
-  sweep_face_walls<true>(inv_dt, sl[3][k], sl[3][k + 1]);
 }
 
 void Simulation::gather_shared(std::size_t k, bool from_weight) {

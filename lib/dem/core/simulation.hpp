@@ -72,6 +72,10 @@ class Simulation {
 
   /// Advances one step. (Blow-ups are detected by the caller: run.cpp checks energy and NaN.)
   void step();
+  /// The same step stated as Kiyama's cycle on one thread, contact by contact and element by element, without
+  /// the optimised machinery (reference_step.cpp): the oracle that step() on any number of threads must match
+  /// bit for bit (tests/lib/reference_step_tests.cpp). It makes no blow-up test (overstep() finds none).
+  void reference_step();
 
   const Model& model() const { return m_; }
   Model& model() {  // whoever may change the model: the next step makes its own rebuild test
@@ -255,6 +259,11 @@ class Simulation {
   // A linear contact forms: its dashpots and the history it starts from.
   void start_linear(std::int32_t law, double overlap, double du_n, double du_s, double mass_i, double mass_j,
                     double& eta_n, double& eta_s, LinearContactHistory& h) const;
+  // The reference step's contacts, one slot each: its law and its forces added to its elements at once.
+  void reference_linear_pair(std::size_t k, double inv_dt);
+  void reference_face_pair(std::size_t k, double inv_dt);
+  void reference_linear_wall(std::size_t k, double inv_dt);
+  void reference_face_wall(std::size_t k, double inv_dt);
 
   Model m_;
   NeighbourSearch search_;
