@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dem/core/face_geometry.hpp"
 #include "dem/core/step_loops.hpp"
 
 namespace dem {
@@ -312,24 +313,11 @@ void Simulation::sweep_face_pairs(double inv_dt, std::size_t b, std::size_t end)
     const double rs = e.radius[i] + e.radius[j];
     const double r2 = ddx * ddx + ddy * ddy;
     const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
-    // Faces bonded at the start touch by construction (a generated lattice): accept them up to
-    // round-off of the generated positions.
-    const bool bond = step_ == 0 && (law.bond_at_start || (e.group[i] >= 0 && e.group[i] == e.group[j]));
-    const double touch = bond ? rs * (1.0 + 1e-9) : rs;
-    if (!s.touching && r2 > touch * touch) continue;  // not touching → touching when D ≤ r1 + r2
+    const bool bond = face_bonded_at_start(law, e, i, j, step_);
+    if (!s.touching && face_pair_apart(r2, rs, bond)) continue;  // not touching → touching when D ≤ r1 + r2
     const double dist = std::sqrt(r2);
     const double nx = ddx / dist, ny = ddy / dist;
-    const double ux = e.dx[i] - e.dx[j], uy = e.dy[i] - e.dy[j];
-    FaceKinematics k;
-    k.du_projected = ux * nx + uy * ny;
-    k.dv_translation = -ux * ny + uy * nx;
-    const double ox = ddx - (e.dx[j] - e.dx[i]), oy = ddy - (e.dy[j] - e.dy[i]);  // centre line before the step
-    k.du_exact = std::hypot(ox, oy) - dist;
-    k.dbeta = std::atan2(ox * ddy - oy * ddx, ox * ddx + oy * ddy);
-    k.dphi1 = e.dphi[i];
-    k.dphi2 = e.dphi[j];
-    k.r1 = e.radius[i];
-    k.r2 = e.radius[j];
+    const FaceKinematics k = face_pair_kinematics(e, i, j, ddx, ddy, dist, nx, ny);
     if (!s.touching) {
       s.touching = 1;
       s.c = face_constants(law, e.radius[i], e.radius[j], reduced_mass(e.mass[i], e.mass[j]), m_.thickness);

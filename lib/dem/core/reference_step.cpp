@@ -18,6 +18,8 @@
 // force, and with the same slot lists the states compare field by field.
 #include <cmath>
 
+#include "dem/core/face_geometry.hpp"
+
 namespace dem {
 
 namespace {
@@ -168,20 +170,11 @@ void Simulation::reference_face_pair(std::size_t k, double inv_dt) {
   const double rs = e.radius[i] + e.radius[j];
   const double r2 = ddx * ddx + ddy * ddy;
   const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
-  // a face bonded at the start (a generated lattice) touches up to the round-off of the generated positions
-  const bool bond = step_ == 0 && (law.bond_at_start || (e.group[i] >= 0 && e.group[i] == e.group[j]));
-  const double touch = bond ? rs * (1.0 + 1e-9) : rs;
-  if (!s.touching && r2 > touch * touch) return;  // a contact forms when D ≤ r1 + r2
+  const bool bond = face_bonded_at_start(law, e, i, j, step_);
+  if (!s.touching && face_pair_apart(r2, rs, bond)) return;  // a contact forms when D ≤ r1 + r2
   const double dist = std::sqrt(r2);
   const double nx = ddx / dist, ny = ddy / dist;
-  const double ux = e.dx[i] - e.dx[j], uy = e.dy[i] - e.dy[j];
-  FaceKinematics m;
-  m.du_projected = ux * nx + uy * ny;  // (M15.1), as (K5.a)
-  m.dv_translation = -ux * ny + uy * nx;
-  const double ox = ddx - (e.dx[j] - e.dx[i]), oy = ddy - (e.dy[j] - e.dy[i]);  // the centre line before the step
-  m.du_exact = std::hypot(ox, oy) - dist;                              // (M3.1)
-  m.dbeta = std::atan2(ox * ddy - oy * ddx, ox * ddx + oy * ddy);     // the contact frame's turn
-  m.dphi1 = e.dphi[i], m.dphi2 = e.dphi[j], m.r1 = e.radius[i], m.r2 = e.radius[j];
+  const FaceKinematics m = face_pair_kinematics(e, i, j, ddx, ddy, dist, nx, ny);  // (M3, M15)
   if (!s.touching) {
     s.touching = 1;
     const double m_eff = e.mass[i] * e.mass[j] / (e.mass[i] + e.mass[j]);
