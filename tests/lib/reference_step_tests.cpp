@@ -4,7 +4,7 @@
 // contact slot's history and forces) bit for bit after every compared step.
 //
 // What the oracle covers: disks and PREs, linear and face laws, element and wall contacts, bonded faces,
-// preloads (the constructor's static step, shared by both), drives of elements and walls, the base plate
+// preloads (the constructor's static step, shared by both), a driven element and a driven wall, the base plate
 // (M21), both integrators and the staggered start, spatial reordering. What it does not: a silo's
 // discharge (the outlet and the keystone are run.cpp's, between steps; a filled silo is covered), and the
 // blow-up test (the reference makes none).
@@ -38,6 +38,7 @@ const std::vector<OracleCase> kCases = {
     {"a preloaded PRE", "cases/pre/small_rotation.toml", {}, 400},
     {"a silo filling (disks, walls, spatial reordering at every rebuild)", "cases/silo/fill_discharge_11_12.toml",
      {"numerics.reorder_every=1"}, 600},
+    {"disks in a box pushed by a driven disk (K19, rebuilds)", "tests/lib/cases/restart_disks.toml", {}, 3000},
     {"a disk on a slope, staggered start", "cases/bench/disk_on_slope.toml", {"numerics.velocity_start=staggered"}, 500},
 };
 
