@@ -183,7 +183,7 @@ void Simulation::reference_face_pair(std::size_t k, double inv_dt) {
     start_face(law.face, s.c, geometric ? (rs - dist) - m.du_projected : 0.0, bond, geometric, s.h);
     if (preloading_) s.h.geometric_start = 0;
   }
-  const FaceForce f = face_contact_force(law.face, s.c, m, inv_dt, s.h);  // (M3–M12)
+  const FaceForce f = face_contact_force_scalar(law.face, s.c, m, inv_dt, s.h);  // (M3–M12)
   s.f = f, s.nx = nx, s.ny = ny;
   if (f.links == 0) s.touching = 0;  // no link left: the contact ends
   const double fx = -f.p * nx + f.q * ny, fy = -f.p * ny - f.q * nx;  // (M12): on i; on j the opposite
@@ -223,7 +223,7 @@ void Simulation::reference_face_wall(std::size_t k, double inv_dt) {
     start_face(law.face, s.c, geometric ? (r - dist) - m.du_projected : 0.0, bond, geometric, s.h);
     if (preloading_) s.h.geometric_start = 0;
   }
-  const FaceForce f = face_contact_force(law.face, s.c, m, inv_dt, s.h);  // (M3–M12)
+  const FaceForce f = face_contact_force_scalar(law.face, s.c, m, inv_dt, s.h);  // (M3–M12)
   s.f = f, s.nx = nx, s.ny = ny;
   if (f.links == 0) s.touching = 0;
   const double fx = -f.p * nx + f.q * ny, fy = -f.p * ny - f.q * nx;  // (M12)
