@@ -2,6 +2,8 @@
 // contact by contact, without the optimised step's machinery. The optimised step() on 1, 2 and 3 threads
 // must give the reference's whole state (positions, increments, velocities, rotations, forces, walls, every
 // contact slot's history and forces) bit for bit after every compared step.
+// The reference calls the readable face law (face_contact_force_scalar), the sweeps its lanes form
+// (face_contact_force): the oracle checks that the two agree too.
 //
 // What the oracle covers: disks and PREs, linear and face laws, element and wall contacts, bonded faces,
 // preloads (the constructor's static step, shared by both), a driven element and a driven wall, the base plate
