@@ -53,7 +53,7 @@ Dashpots linear_dashpots(const PairLaw& law, double mass_i, double mass_j);
 /// M7.3, M7.4, M19).
 FaceConstants face_constants(const PairLaw& law, double r_i, double r_j, double m_eff, double thickness);
 
-/// The bookkeeping of a slot list merged at a rebuild on several threads (simulation.cpp, merge_on).
+/// The bookkeeping of a slot list merged at a rebuild on several threads (rebuild.cpp, merge_on).
 struct MergePlan {
   std::vector<std::uint32_t> dest, place;  // per old slot, per candidate: its place within its range, or none
   std::vector<std::size_t> at;             // where each thread's range starts in the merged list
@@ -72,6 +72,10 @@ class Simulation {
 
   /// Advances one step. (Blow-ups are detected by the caller: run.cpp checks energy and NaN.)
   void step();
+  /// The same step stated as Kiyama's cycle on one thread, contact by contact and element by element, without
+  /// the optimised machinery (reference_step.cpp): the oracle that step() on any number of threads must match
+  /// bit for bit (tests/lib/core/reference_step_tests.cpp). It makes no blow-up test (overstep() finds none).
+  void reference_step();
 
   const Model& model() const { return m_; }
   Model& model() {  // whoever may change the model: the next step makes its own rebuild test
@@ -83,7 +87,7 @@ class Simulation {
   std::int64_t steps() const { return step_; }
   double dt() const { return m_.numerics.dt; }
 
-  /// Summed in fixed chunks (energies() in simulation.cpp): the same bits on any number of threads.
+  /// Summed in fixed chunks (energies() in observables.cpp): the same bits on any number of threads.
   Energies energies() const;
   static constexpr std::size_t kEnergyChunk = 4096;
   /// Whether the steps keep each linear element–element contact's forces and normal (its resultant) for
@@ -219,6 +223,10 @@ class Simulation {
   // have swept (WorkerThreads::wait_earlier), gather_shared sums its shared elements' slots in the fixed
   // order of the contact index.
   void sweep_share(double inv_dt, std::size_t share, bool from_weight);
+  // step() on nt threads (parallel_step.cpp): the rebuild test, the sweeps, the sums of the shared elements
+  // and, unless the base plate comes first, the integration, each thread over its share.
+  void step_on_threads(int nt, bool tested, double inv_dt, double dt_v, double limit2_step, double limit2_next,
+                       bool plate);
   void gather_shared(std::size_t share, bool from_weight);
   void gather_forces(const std::uint32_t* items, std::size_t count, bool from_weight);  // these elements
   void sum_wall_forces();
@@ -251,6 +259,11 @@ class Simulation {
   // A linear contact forms: its dashpots and the history it starts from.
   void start_linear(std::int32_t law, double overlap, double du_n, double du_s, double mass_i, double mass_j,
                     double& eta_n, double& eta_s, LinearContactHistory& h) const;
+  // The reference step's contacts, one slot each: its law and its forces added to its elements at once.
+  void reference_linear_pair(std::size_t k, double inv_dt);
+  void reference_face_pair(std::size_t k, double inv_dt);
+  void reference_linear_wall(std::size_t k, double inv_dt);
+  void reference_face_wall(std::size_t k, double inv_dt);
 
   Model m_;
   NeighbourSearch search_;

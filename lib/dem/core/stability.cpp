@@ -391,11 +391,8 @@ Kind contact_kind(const Model& m, std::int32_t law_index, const Stats& self, con
   return k;
 }
 
-}  // namespace
-
-StabilityBound assembly_stability_bound(const Model& m, const std::vector<StabilityTerm>& extra) {
-  const Elements& e = m.elements;
-  const std::size_t nm = m.materials.size();
+/// The sizes, masses and inertias of each material's active elements, and of its free ones.
+std::vector<Stats> material_stats(const Elements& e, std::size_t nm) {
   std::vector<Stats> st(nm);
   for (std::size_t i = 0; i < e.size(); ++i) {
     if (!e.active[i]) continue;
@@ -418,6 +415,15 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
     s.fi_min = std::min(s.fi_min, e.inertia[i]);
     s.fvs2_max = std::max(s.fvs2_max, vs2);
   }
+  return st;
+}
+
+}  // namespace
+
+StabilityBound assembly_stability_bound(const Model& m, const std::vector<StabilityTerm>& extra) {
+  const Elements& e = m.elements;
+  const std::size_t nm = m.materials.size();
+  const std::vector<Stats> st = material_stats(e, nm);
   StabilityBound out;
   out.limit = out.limit_sticking = inf;
   out.assumptions = fmt::format(

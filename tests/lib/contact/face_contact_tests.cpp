@@ -632,3 +632,52 @@ TEST_CASE("face: segments in vector lanes give the scalar law's states and sums 
     CHECK(taken < 3500);
   }
 }
+
+TEST_CASE("face: face_contact_force (segments in lanes) gives face_contact_force_scalar's bits, every N and reading",
+          "[face]") {
+  std::mt19937_64 rng(20261127);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int steps = 0;
+  for (int n = 1; n <= dem::kMaxSegments; ++n)
+    for (const auto normal : {dem::NormalIncrement::exact, dem::NormalIncrement::linearised})
+      for (const auto tangential : {dem::TangentialIncrement::exact, dem::TangentialIncrement::literal,
+                                    dem::TangentialIncrement::linearised, dem::TangentialIncrement::hisatake}) {
+        dem::FaceLaw law;
+        law.segments = n;
+        law.positions = n == 2 && tangential == dem::TangentialIncrement::literal ? dem::SegmentPositions::ends
+                                                                                 : dem::SegmentPositions::centres;
+        law.normal = normal, law.tangential = tangential;
+        law.tensile_strength = 2e6, law.cohesion = 1e6, law.tan_phi = 0.6, law.healing = n % 2 == 0;
+        dem::FaceConstants c;
+        c.kn = kn, c.ks = ks, c.eta_n = 40.0, c.eta_s = 20.0, c.half_length = a, c.segment_area = 1e-6 / n;
+        dem::FaceHistory fast, readable;
+        dem::start_face(law, c, 1e-7, true, n % 3 == 0, fast);
+        readable = fast;
+        for (int k = 0; k < 300; ++k) {
+          dem::FaceKinematics m;
+          const double scale = k % 50 < 40 ? 1e-8 : 1e-6;  // mostly small (linked, sticking), now and then large
+          m.du_projected = scale * unit(rng), m.du_exact = m.du_projected * (1.0 + 1e-3 * unit(rng));
+          m.dv_translation = scale * unit(rng), m.dv_frame = 0.0;
+          m.dphi1 = scale / a * unit(rng), m.dphi2 = scale / a * unit(rng);
+          m.dbeta = 1e-4 * unit(rng), m.r1 = 0.01, m.r2 = 0.012;
+          const dem::FaceForce f = dem::face_contact_force(law, c, m, inv_dt, fast);
+          const dem::FaceForce g = dem::face_contact_force_scalar(law, c, m, inv_dt, readable);
+          CAPTURE(n, static_cast<int>(normal), static_cast<int>(tangential), k);
+          REQUIRE(same_bits(f.p, g.p));
+          REQUIRE(same_bits(f.q, g.q));
+          REQUIRE(same_bits(f.p_moment, g.p_moment));
+          REQUIRE(f.links == g.links);
+          REQUIRE(f.any_tensile == g.any_tensile);
+          REQUIRE(same_bits(fast.theta1, readable.theta1));
+          REQUIRE(same_bits(fast.theta2, readable.theta2));
+          REQUIRE(fast.geometric_start == readable.geometric_start);
+          for (std::size_t i = 0; i < fast.seg.size(); ++i) {
+            const dem::SegmentState &u = fast.seg[i], &v = readable.seg[i];
+            REQUIRE((same_bits(u.u, v.u) && same_bits(u.pe, v.pe) && same_bits(u.qe, v.qe)));
+            REQUIRE((u.linked == v.linked && u.intact == v.intact));
+          }
+          ++steps;
+        }
+      }
+  CHECK(steps == 8 * 2 * 4 * 300);
+}
