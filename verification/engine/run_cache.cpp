@@ -75,4 +75,12 @@ void mark_ended(const std::filesystem::path& out, const std::string& study, cons
   }
 }
 
+std::filesystem::path open_study_folder(const std::string& study, const StudyOptions& opt) {
+  const std::filesystem::path out = opt.out_dir.empty() ? std::filesystem::path("build/studies") / study : opt.out_dir;
+  std::filesystem::create_directories(out);
+  std::filesystem::remove(out / "result.json");
+  mark_running(out, study);
+  return out;
+}
+
 }  // namespace ver

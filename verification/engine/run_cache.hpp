@@ -14,6 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/study.hpp"
+
 namespace ver {
 
 /// FNV-1a 64.
@@ -49,6 +51,25 @@ void write_cached(const std::filesystem::path& entry, const CachedRun& run, cons
 void mark_running(const std::filesystem::path& out, const std::string& study);
 void mark_ended(const std::filesystem::path& out, const std::string& study, const std::string& status,
                 const std::string& message);
+
+/// The folder of a study or sweep (opt.out_dir, or build/studies/<name>) made ready: the old result.json
+/// removed first (never a stale result) and running.json written.
+std::filesystem::path open_study_folder(const std::string& study, const StudyOptions& opt);
+
+/// Calls f(); if it throws, records in running.json how the study ended ("interrupted" or "failed",
+/// with the message) and rethrows.
+template <class F>
+auto marking_failure(const std::filesystem::path& out, const std::string& study, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const StudyInterrupted& e) {
+    mark_ended(out, study, "interrupted", e.what());
+    throw;
+  } catch (const std::exception& e) {
+    mark_ended(out, study, "failed", e.what());
+    throw;
+  }
+}
 
 /// Runs f(0) … f(n−1) on `jobs` threads; rethrows the first exception after all have finished.
 template <class F>

@@ -404,28 +404,19 @@ void print_summary(const Sens& s, const sens::Analysis& an, std::size_t runs, in
 StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
   const auto started = std::chrono::steady_clock::now();
   const Sens s = read_sens(file);
-  const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
-  fs::create_directories(out);
-  fs::remove(out / "result.json");
-  mark_running(out, s.name);  // until the runs are done; how they ended if they failed (run_cache.hpp)
+  const fs::path out = open_study_folder(s.name, opt);  // running.json until the runs are done (run_cache.hpp)
   Progress progress("sweep " + s.name, stderr, opt.print && ::isatty(::fileno(stderr)), opt.verbose);
   const ProgressScope shown(&progress);
   sens::Runner runner{s, out / "cache"};
-  sens::Plan plan;
-  try {
+  const sens::Plan plan = marking_failure(out, s.name, [&] {
     if (!opt.use_cache) fs::remove_all(runner.cache_dir);
     fs::create_directories(runner.cache_dir);
     sens::check_ranges(s);
     runner.dt_fraction = sens::dt_fraction_of(s);
-    plan = sens::plan_runs(s);
-    runner.run_samples(plan.runs, opt.jobs);
-  } catch (const StudyInterrupted& e) {
-    mark_ended(out, s.name, "interrupted", e.what());
-    throw;
-  } catch (const std::exception& e) {
-    mark_ended(out, s.name, "failed", e.what());
-    throw;
-  }
+    sens::Plan p = sens::plan_runs(s);
+    runner.run_samples(p.runs, opt.jobs);
+    return p;
+  });
   progress.close();
   fs::remove(out / "running.json");
   const bool derived_dt = runner.dt_fraction > 0.0;

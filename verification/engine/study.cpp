@@ -11,6 +11,7 @@
 #include "dem/run/output_files.hpp"
 #include "dem/run/run.hpp"
 #include "engine/progress.hpp"
+#include "engine/run_cache.hpp"
 #include "engine/study_file.hpp"
 #include "engine/study_run.hpp"
 
@@ -108,21 +109,10 @@ StudyResult run_marked(const Study& s, const fs::path& file, const fs::path& out
 StudyResult run_study(const fs::path& file, const StudyOptions& opt) {
   const auto started = std::chrono::steady_clock::now();
   const Study s = read_study(file);
-  const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
-  fs::create_directories(out);
-  // Never a stale result: the old result.json goes first; running.json marks a study under way (or
-  // killed) until the new result.json is renamed into place, and says how it ended if it failed.
-  fs::remove(out / "result.json");
-  mark_running(out, s.name);
-  try {
-    return run_marked(s, file, out, opt, started);
-  } catch (const StudyInterrupted& e) {
-    mark_ended(out, s.name, "interrupted", e.what());
-    throw;
-  } catch (const std::exception& e) {
-    mark_ended(out, s.name, "failed", e.what());
-    throw;
-  }
+  // running.json marks a study under way (or killed) until the new result.json is renamed into place,
+  // and says how it ended if it failed.
+  const fs::path out = open_study_folder(s.name, opt);
+  return marking_failure(out, s.name, [&] { return run_marked(s, file, out, opt, started); });
 }
 
 }  // namespace ver

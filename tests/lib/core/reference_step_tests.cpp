@@ -40,7 +40,7 @@ const std::vector<OracleCase> kCases = {
     {"a preloaded PRE", "cases/pre/small_rotation.toml", {}, 400},
     {"a silo filling (disks, walls, spatial reordering at every rebuild)", "cases/silo/fill_discharge_11_12.toml",
      {"numerics.reorder_every=1"}, 600},
-    {"disks in a box pushed by a driven disk (K19, rebuilds)", "tests/lib/cases/restart_disks.toml", {}, 3000},
+    {"disks in a box pushed by a driven disk (K19, rebuilds)", "tests/lib/fixtures/restart_disks.toml", {}, 3000},
     {"a disk on a slope, staggered start", "cases/bench/disk_on_slope.toml", {"numerics.velocity_start=staggered"}, 500},
 };
 
