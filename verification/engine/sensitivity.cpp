@@ -19,6 +19,7 @@
 #include "engine/progress.hpp"
 #include "engine/run_cache.hpp"
 #include "engine/sensitivity_study.hpp"
+#include "engine/study_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -116,12 +117,7 @@ void read_header(Sens& s, const TableReader& top) {
     if (s.function) r.fail("replicates", "only for a case (a test function has no noise)");
     for (const auto& e : *ra) s.replicates.push_back(overrides_of(r, e, "replicates"));
   }
-  if (const toml::table* su = r.table("setup"))
-    for (const auto& [k, v] : *su) {
-      if (auto x = v.value<double>()) s.setup[std::string(k.str())] = *x;
-      else if (auto y = v.value_exact<std::string>()) s.setup[std::string(k.str())] = *y;
-      else r.fail_at(v, "setup." + std::string(k.str()), "expected a number or a string (shown in the report)");
-    }
+  s.setup = read_setup(r);
   r.finish();
 }
 

@@ -84,12 +84,7 @@ void read_header(Study& s, const TableReader& top, const std::string& file) {
   s.kind = kind == "refinement" ? Kind::refinement : kind == "stability" ? Kind::stability
            : kind == "mode_map" ? Kind::mode_map : Kind::single;
   s.set = r.strings("set");
-  if (const toml::table* su = r.table("setup"))
-    for (const auto& [k, v] : *su) {
-      if (auto x = v.value<double>()) s.setup[std::string(k.str())] = *x;
-      else if (auto y = v.value_exact<std::string>()) s.setup[std::string(k.str())] = *y;
-      else r.fail_at(v, "setup." + std::string(k.str()), "expected a number or a string (shown in the report)");
-    }
+  s.setup = read_setup(r);
   r.finish();
 }
 
@@ -414,6 +409,17 @@ void check_probes(const Study& s, const toml::table& root, const std::string& fi
 }
 
 }  // namespace
+
+nlohmann::json read_setup(const dem::TableReader& r) {
+  nlohmann::json setup = nlohmann::json::object();
+  if (const toml::table* su = r.table("setup"))
+    for (const auto& [k, v] : *su) {
+      if (auto x = v.value<double>()) setup[std::string(k.str())] = *x;
+      else if (auto y = v.value_exact<std::string>()) setup[std::string(k.str())] = *y;
+      else r.fail_at(v, "setup." + std::string(k.str()), "expected a number or a string (shown in the report)");
+    }
+  return setup;
+}
 
 bool applies(const Check& c, const Variant& v) {
   return c.only.empty() || std::find(c.only.begin(), c.only.end(), v.label) != c.only.end();

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dem/cases/case_reader.hpp"
 #include "engine/refinement_levels.hpp"
 
 namespace ver {
@@ -100,6 +101,9 @@ struct Study {
   double radius = 0.0, margin = 0.0, rotation_threshold = 0.0, slide_threshold = 0.0;
   int wall_contact = 1;
 };
+
+/// The `setup` table of a study or sensitivity file (numbers and strings, shown in the report).
+nlohmann::json read_setup(const dem::TableReader& r);
 
 /// Reads and checks a study file; throws dem::CaseError "file:line: key: what was expected".
 Study read_study(const std::filesystem::path& file);
