@@ -106,7 +106,7 @@ TEST_CASE("Refinement levels: bad input gets file:line: key: what was expected",
   CHECK_THROWS_WITH(parse(edit("args = { n_w = 1, n_h = 3 }", "args = [1, 3]")),
                     Contains("study.toml:9: level.args: expected a table of reference arguments"));
   CHECK_THROWS_WITH(parse(edit("args = { n_w = 1, n_h = 3 }", "arg = { n_w = 1 }")),
-                    Contains("study.toml:9: level.arg: unknown key (expected label, h or n, set, args)"));
+                    Contains("study.toml:9: level.arg: unknown key (expected label, h or n, set, args); did you mean 'args'?"));
   CHECK_THROWS_WITH(parse(edit("label = \"2x6\"", "label = \"1x3\"")), Contains("level.label: \"1x3\" is used by two levels"));
   CHECK_THROWS_WITH(parse(edit("label = \"r [m]\"", "parameter = \"numerics.dt\"")),
                     Contains("study.toml:4: refinement.parameter: with [[level]] tables each level gives its own h"));

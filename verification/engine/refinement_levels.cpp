@@ -106,7 +106,11 @@ Refinement read_levels(const toml::table& root, const toml::table* r, const std:
     const std::size_t k = out.levels.size();
     for (const auto& [key, v] : *t)
       if (key.str() != "label" && key.str() != "h" && key.str() != "n" && key.str() != "set" && key.str() != "args")
-        fail_at(file, v, fmt::format("level.{}", key.str()), "unknown key (expected label, h or n, set, args)");
+        fail_at(file, v, fmt::format("level.{}", key.str()),
+                fmt::format("unknown key (expected label, h or n, set, args){}", [&] {
+                  const std::string near = dem::nearest_word(std::string(key.str()), {"label", "h", "n", "set", "args"});
+                  return near.empty() ? std::string() : fmt::format("; did you mean '{}'?", near);
+                }()));
     RefinementLevel l;
     if (const toml::node* x = t->get("label")) {
       const auto s = x->value_exact<std::string>();
