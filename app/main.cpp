@@ -13,6 +13,7 @@
 #include <fstream>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <thread>
 #include <utility>
@@ -96,12 +97,16 @@ int cmd_run(const fs::path& file, const std::vector<std::string>& sets, fs::path
   if (out.empty()) out = fs::path("runs") / file.stem();
   opt.out_dir = out;
   opt.progress = !quiet;
+  std::map<std::string, std::string> units;  // each probe's SI unit, printed with its value
+  for (const auto& p : c.probes) units[p.name] = dem::probe_unit(p);
   const dem::RunResult r = dem::run_case(std::move(c), opt);  // the model's elements once, in the run
   if (!quiet) {
     fmt::print("{}: {} after {} steps (t = {:.6g} s) in {:.3g} s, {:.3g} element-steps/s\n", file.string(), r.status,
                r.steps, r.time, r.wall_seconds, r.element_steps_per_second);
-    for (const auto& [k, v] : r.probes)
-      fmt::print("  {} = {}\n", k, v ? fmt::format("{:.10g}", *v) : std::string("(not available)"));
+    for (const auto& [k, v] : r.probes) {
+      const std::string unit = units.count(k) && units[k] != "1" ? " " + units[k] : "";
+      fmt::print("  {} = {}\n", k, v ? fmt::format("{:.10g}{}", *v, unit) : std::string("(not available)"));
+    }
     fmt::print("  written to {}\n", out.string());
   }
   if (r.status == "blow-up") {

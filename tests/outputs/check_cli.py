@@ -61,6 +61,13 @@ with tempfile.TemporaryDirectory() as tmp:
             fails.append(f"run --threads {value}: exit {r.returncode}, stderr {r.stderr!r} (expected a refusal naming "
                          f"--threads, no output folder)")
 
+# `dem2d run` prints each probe with its SI unit (a restitution coefficient is a pure number).
+import tempfile as _tf
+with _tf.TemporaryDirectory() as tmp:
+    r = run("run", "cases/impact/disk_wall.toml", "--out", tmp + "/o")
+    if r.returncode != 0 or not re.search(r"^  tc = [0-9.e+-]+ s$", r.stdout, re.M) or not re.search(r"^  e = [0-9.e+-]+$", r.stdout, re.M):
+        fails.append(f"run: probes without their units in {r.stdout!r}")
+
 # The command line's own mistakes: an unknown subcommand is named with the nearest one; every usage
 # error is exit 2 (the exit statuses are listed in --help).
 typo = run("rnu", "cases/impact/disk_wall.toml")

@@ -261,14 +261,18 @@ struct RunLoop {
   }
 
   // progress on a terminal, at most every half second
-  void print_progress(std::int64_t k, std::chrono::steady_clock::time_point t0,
+  /// The progress line, counted from this run's own start (a restart continues at its checkpoint's
+  /// step: its share, speed and time left are those of the steps it runs).
+  void print_progress(std::int64_t k, std::int64_t first_step, std::chrono::steady_clock::time_point t0,
                       std::chrono::steady_clock::time_point& last_print) const {
     const auto now = std::chrono::steady_clock::now();
     if (now - last_print > std::chrono::milliseconds(500)) {
       const double secs = std::chrono::duration<double>(now - t0).count();
-      fmt::print(stderr, "\r  t = {:.4g} s / {:.4g} s ({:.0f} %), {:.3g} steps/s   ", sim.time(), m.numerics.duration,
-                 100.0 * static_cast<double>(k + 1) / static_cast<double>(total_steps),
-                 static_cast<double>(k + 1) / secs);
+      const auto done = static_cast<double>(k + 1 - first_step), todo = static_cast<double>(total_steps - first_step);
+      const double left = secs / done * (todo - done);
+      fmt::print(stderr, "\r  t = {:.4g} s / {:.4g} s ({:.0f} % of this run), {:.3g} steps/s, ~{}:{:02} left   ", sim.time(),
+                 m.numerics.duration, 100.0 * done / todo, done / secs, static_cast<long long>(left) / 60,
+                 static_cast<long long>(left) % 60);
       last_print = now;
     }
   }
@@ -306,7 +310,7 @@ void RunLoop::steps() {
     if (out.picture_due(sim.steps())) out.picture(sim, false);
     if (sim.steps() % check_every == 0 || last) {
       if (energy_ran_away()) break;
-      if (show) print_progress(k, t0, last_print);
+      if (show) print_progress(k, first_step, t0, last_print);
     }
     // Checkpoints, and SIGINT / SIGTERM (or the test hook): stop here and write everything.
     if (opt.checkpoint_every > 0 && sim.steps() % opt.checkpoint_every == 0 && !last)
