@@ -740,20 +740,49 @@ void Reader::read_numerics(const TableReader& top) {
   }
 }
 
+/// An output interval: a whole number of steps (500, or "500") or a time ("1 ms"), which must be a
+/// whole number of steps of dt (within 1e-9); 0: none. Returned in steps.
+std::int64_t steps_or_time(const TableReader& r, const std::string& key, double dt) {
+  const toml::node* n = r.node(key);
+  r.mark(key);
+  if (!n) return 0;
+  if (n->is_integer()) return r.integer(key, 0, std::int64_t{1} << 40, 0);
+  if (!n->is_string()) r.fail(key, "expected a whole number of steps (500) or a time (\"1 ms\")");
+  Quantity q;
+  try {
+    q = parse_quantity(*n->value<std::string>());
+  } catch (const UnitError& e) {
+    r.fail(key, e.what());
+  }
+  if (q.dim == dims::dimensionless) {  // "500": steps
+    if (!(q.value >= 0.0 && q.value <= 1e12 && q.value == std::floor(q.value)))
+      r.fail(key, fmt::format("expected a whole number of steps, got {:g}", q.value));
+    return static_cast<std::int64_t>(q.value);
+  }
+  const double t = r.quantity(key, dims::time);
+  const double steps = t / dt;
+  if (!(t >= 0.0) || std::abs(steps - std::round(steps)) > 1e-9 * std::max(1.0, steps) || steps > 1e12)
+    r.fail(key, fmt::format("{:.6g} s is {:.6g} steps of dt = {:.6g} s; give a whole number of steps, or a time that is one",
+                            t, steps, dt));
+  return static_cast<std::int64_t>(std::llround(steps));
+}
+
 /// [output]: series, VTK snapshots and force-network pictures.
 void Reader::read_output(const TableReader& top) {
   Model& m = c.model;
   if (const toml::table* t = top.table("output")) {
     TableReader r(*t, "output", file);
-    c.output.every = r.integer("every", 0, std::int64_t{1} << 40, 0);
+    c.output.every = steps_or_time(r, "every", m.numerics.dt);
     c.output.series = r.strings("series");
     if (const toml::array* arr = r.node("series") ? r.node("series")->as_array() : nullptr)
       for (const auto& item : *arr) c.output.series_locations.push_back(where(item, file));
     c.output.vtk = r.boolean("vtk", true);
-    c.output.vtk_every = r.integer("vtk_every", 0, std::int64_t{1} << 40, 0);
+    c.output.vtk_every = steps_or_time(r, "vtk_every", m.numerics.dt);
     OutputSpec& o = c.output;
     o.pictures = r.boolean("pictures", false);
-    o.picture_every = r.quantity("picture_every", dims::time, 0.0);
+    o.picture_every = r.node("picture_every") && r.node("picture_every")->is_integer()
+                          ? static_cast<double>(r.integer("picture_every", 0, std::int64_t{1} << 40, 0)) * m.numerics.dt
+                          : r.quantity("picture_every", dims::time, 0.0);  // steps, or a time
     non_negative(r, "picture_every", o.picture_every);
     if (o.picture_every > 0.0 && o.picture_every < m.numerics.dt)
       r.fail("picture_every", fmt::format("{:.6g} s is shorter than dt = {:.6g} s; a picture interval of at least one step",

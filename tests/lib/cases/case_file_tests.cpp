@@ -224,3 +224,17 @@ TEST_CASE("case file: --set with a bad value is refused with the key and what wa
   CHECK_THAT(read_error(path, {"element.0.mass=25 mm"}), Contains("element.0.mass: expected a mass"));
   CHECK_THAT(read_error(path, {"numerics.dtt=1"}), Contains("numerics.dtt: unknown key"));
 }
+
+TEST_CASE("case file: output intervals in steps or as a time that is a whole number of steps", "[case]") {
+  const auto path = test::case_dir() / "minimal.toml";  // dt = 1e-5 s
+  const auto c = dem::read_case(path, {"output.every=500", "output.vtk_every=1 ms", "output.picture_every=20"});
+  CHECK(c.output.every == 500);
+  CHECK(c.output.vtk_every == 100);                    // 1 ms / 1e-5 s
+  CHECK_THAT(c.output.picture_every, WithinRel(2e-4, 1e-12));  // 20 steps
+  CHECK(dem::read_case(path, {"output.every=\"250\""}).output.every == 250);
+  CHECK_THAT(read_error(path.string(), {"output.every=0.015 ms"}),
+             Contains("output.every: 1.5e-05 s is 1.5 steps of dt = 1e-05 s; give a whole number of steps"));
+  CHECK_THAT(read_error(path.string(), {"output.vtk_every=2 m"}), Contains("output.vtk_every: expected a time"));
+  CHECK_THAT(read_error(path.string(), {"output.every=\"2.5\""}), Contains("output.every: expected a whole number of steps, got 2.5"));
+  CHECK_THAT(read_error(path.string(), {"output.every=true"}), Contains("output.every: expected a whole number of steps (500) or a time"));
+}
