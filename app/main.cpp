@@ -311,7 +311,9 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);  // prints help, the version or the error
     return code == 0 ? 0 : 2;      // every command-line mistake is exit 2, like a mistake in an input file
   }
-  dem::install_interrupt_handlers();  // SIGINT / SIGTERM: runs stop at the next step and write everything
+  // SIGINT / SIGTERM: runs stop at the next step and write everything. `check` writes nothing: it keeps
+  // the default action (Ctrl-C ends it at once).
+  if (!*o.check) dem::install_interrupt_handlers();
   std::signal(SIGXFSZ, SIG_IGN);      // a file size limit makes writes fail (reported, exit 4) instead of killing
 #ifdef DEM2D_MPI
   // Under mpirun: rank 0 does the command; for study and sweep the other ranks run what it hands out

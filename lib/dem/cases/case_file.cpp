@@ -352,8 +352,13 @@ struct Reader {
       non_negative(r, "gap", gap);
       if (!(right > left)) r.fail("right", "must be right of left");
       if (r.has("rows") == r.has("count_near")) r.fail_here("give exactly one of rows or count_near (the row count whose disk count is nearest)");
-      const int rows = r.has("rows") ? static_cast<int>(r.integer("rows", 1, 1000000))
-                                     : rows_nearest_count(s, r.integer("count_near", 1, kMaxElements));
+      int rows = 0;
+      try {
+        rows = r.has("rows") ? static_cast<int>(r.integer("rows", 1, 1000000))
+                             : rows_nearest_count(s, r.integer("count_near", 1, kMaxElements));
+      } catch (const std::invalid_argument& e) {
+        r.fail("count_near", e.what());
+      }
       OrderedArrangement a;
       try {
         a = ordered_arrangement(s, rows, right - left, ec.radius, gap);
@@ -874,7 +879,11 @@ void Reader::read_probes(const TableReader& top) {
     if (p.kind != ProbeKind::restitution && p.kind != ProbeKind::contact_duration) {
       p.quantity = r.string("quantity");
       p.location = where(*r.node("quantity"), file);
-      if (p.kind == ProbeKind::value) p.at = r.optional_quantity("at", dims::time);
+      if (p.kind == ProbeKind::value) {
+        p.at = r.optional_quantity("at", dims::time);
+        if (p.at && *p.at < 0.0)  // a value before the start would be extrapolated
+          r.fail("at", fmt::format("expected a time ≥ 0 (the run starts at t = 0), got {:g} s", *p.at));
+      }
       if (p.kind == ProbeKind::slope) {
         p.from = r.quantity("from", dims::time);
         p.to = r.quantity("to", dims::time);

@@ -36,13 +36,16 @@ int rows_nearest_count(int s, std::int64_t target) {
   if (s < 2 || target < 1) throw std::invalid_argument("need s >= 2 and a target count >= 1");
   int best = 1;
   std::int64_t best_err = -1;
-  for (int rows = 1; rows < 1000000; ++rows) {
+  constexpr int kMaxRows = 1000000;  // as `rows` allows
+  for (int rows = 1; rows <= kMaxRows; ++rows) {
     const std::int64_t n = static_cast<std::int64_t>((rows + 1) / 2) * s + static_cast<std::int64_t>(rows / 2) * (s - 1);
     const std::int64_t err = std::llabs(n - target);
     if (best_err < 0 || err < best_err) best = rows, best_err = err;  // strict: ties keep the fewer rows
-    if (n > target) break;
+    if (n >= target) return best;
   }
-  return best;
+  // never capped silently: a target beyond the largest arrangement is refused
+  throw std::invalid_argument("a count of " + std::to_string(target) + " disks needs more than " + std::to_string(kMaxRows) +
+                              " rows of (s-1)/s; give at most that many rows");
 }
 
 std::vector<Vec2> ordered_positions(const OrderedArrangement& a, double left, double floor, double radius, double gap) {

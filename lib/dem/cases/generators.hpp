@@ -31,7 +31,8 @@ struct OrderedArrangement {
 /// overlapping horizontally: d_x < 2r + gap, or no diagonal contact: d_x/2 ≥ 2r + gap).
 OrderedArrangement ordered_arrangement(int s, int rows, double width, double radius, double gap);
 
-/// The row count whose disk count is nearest `target` (ties: the fewer rows); refs §6.1 "~350".
+/// The row count whose disk count is nearest `target` (ties: the fewer rows); refs §6.1 "~350". Throws
+/// std::invalid_argument for a target beyond 10^6 rows (never capped silently).
 int rows_nearest_count(int s, std::int64_t target);
 
 /// Centres of the arrangement in a box whose left wall is x = left and floor is y = floor (y up): the

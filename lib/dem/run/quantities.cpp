@@ -162,7 +162,10 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
   if (name == "energy.elastic") return [](const Simulation& s) { return s.energies().elastic; };
   if (name == "energy.total") return [](const Simulation& s) { return s.energies().total(); };
   if (name == "mean_increment") return mean_increment;
-  // base plate (M21): travel δ_B = ∫|v_B| dt and displacement since the start
+  // base plate (M21): travel δ_B = ∫|v_B| dt and displacement since the start; only with a base plate
+  // (without one they would be a column of zeros)
+  if ((name == "plate_travel" || name == "plate_dx" || name == "plate_dy") && !m.base_plate.enabled)
+    throw bad("needs a base plate (a [base_friction] table in the case)");
   if (name == "plate_travel") return [](const Simulation& s) { return s.plate_travel().travel; };
   if (name == "plate_dx") return [](const Simulation& s) { return s.plate_travel().displacement.x; };
   if (name == "plate_dy") return [](const Simulation& s) { return s.plate_travel().displacement.y; };

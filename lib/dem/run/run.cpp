@@ -404,6 +404,14 @@ RunResult run_case(Case c, const RunOptions& opt) {
   const double limit = check_case(c);  // throws CaseError before anything runs
   check_outputs(c);
   const std::optional<Checkpoint> restart = read_restart(c, opt);
+  if (restart && !opt.restart_other_case) {  // nothing left to run: refused, not "completed" with a row twice
+    const std::int64_t steps = std::llround(std::ceil(c.model.numerics.duration / c.model.numerics.dt - 1e-9));
+    if (restart->step >= steps)
+      throw CaseError(fmt::format("{}: --restart {}: the checkpoint is at step {} (t = {:.6g} s), at or past the end of "
+                                  "the run (numerics.duration = {:.6g} s, {} steps); give a longer numerics.duration",
+                                  c.path.string(), opt.restart.string(), restart->step, restart->time,
+                                  c.model.numerics.duration, steps));
+  }
   // What summary.json reports of the case as given (counts, masses, walls: the state at the start), taken
   // before the model moves into the Simulation; c.model is empty from here on (read sim.model()).
   const nlohmann::json resolved_si = resolved_case_si(c);

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "dem/cases/case_file.hpp"
+#include "dem/run/run.hpp"
 #include "../test_support.hpp"
 
 using Catch::Matchers::Contains;
@@ -237,4 +238,19 @@ TEST_CASE("case file: output intervals in steps or as a time that is a whole num
   CHECK_THAT(read_error(path.string(), {"output.vtk_every=2 m"}), Contains("output.vtk_every: expected a time"));
   CHECK_THAT(read_error(path.string(), {"output.every=\"2.5\""}), Contains("output.every: expected a whole number of steps, got 2.5"));
   CHECK_THAT(read_error(path.string(), {"output.every=true"}), Contains("output.every: expected a whole number of steps (500) or a time"));
+}
+
+TEST_CASE("case file: inputs that would give a silent wrong answer are refused at their line", "[case]") {
+  const auto path = std::filesystem::path(DEM2D_SOURCE_DIR) / "cases/basic/free_fall.toml";  // probe 0: y at 0.5 s
+  // a value probe before the start (it would be extrapolated)
+  CHECK_THAT(read_error(path.string(), {"probe.0.at=-1 ms"}), Contains("probe.0.at: expected a time ≥ 0") && Contains("-0.001 s"));
+  CHECK_NOTHROW(dem::read_case(path, {"probe.0.at=0 s"}));
+  // the base plate's travel without a base plate (a column of zeros)
+  CHECK_THAT(test::message_of<dem::CaseError>([&] { dem::check_outputs(dem::read_case(path, {"output.series=[\"t\", \"plate_travel\"]"})); }),
+             Contains("output.series: ") && Contains("plate_travel") && Contains("needs a base plate"));
+  const auto silo = std::filesystem::path(DEM2D_SOURCE_DIR) / "cases/silo/static_17_18.toml";
+  // an ordered fill beyond 10^6 rows (was capped silently at ~1.15e7 disks)
+  CHECK_THAT(read_error(silo.string(), {"arrangement.0.count_near=20000000"}),
+             Contains("arrangement.0.count_near") && Contains("needs more than 1000000 rows"));
+  CHECK(dem::read_case(silo, {"arrangement.0.count_near=350"}).model.elements.size() == 350);
 }

@@ -288,3 +288,21 @@ TEST_CASE("A full disk or an unwritable folder is an error, never an empty resul
   // (Its .tmp sibling cannot be created in /dev without root; the error is reported either way.)
   CHECK_THROWS_AS(dem::write_file_atomic("/dev/full/x", "data"), dem::OutputError);
 }
+
+TEST_CASE("A restart at or past the end of the run is refused and not completed twice", "[outputs][restart]") {
+  const dem::Case disks = dem::read_case(source("tests/lib/fixtures/restart_disks.toml"));
+  const auto a = fresh_dir("past_end_a");
+  dem::RunOptions oa;
+  oa.checkpoint_at_end = true;
+  REQUIRE(run(disks, a, oa).status == "completed");
+  dem::RunOptions o;
+  o.restart = a / "checkpoint.bin";
+  const auto b = fresh_dir("past_end_b");
+  CHECK_THROWS_WITH(run(disks, b, o), Contains("at or past the end of the run") && Contains("give a longer numerics.duration"));
+  CHECK_FALSE(fs::exists(b / "series.csv"));
+  // one step more: accepted, and the restarted series starts at the checkpoint's row
+  const double dt = disks.model.numerics.dt;
+  const dem::Case longer = dem::read_case(source("tests/lib/fixtures/restart_disks.toml"),
+                                          {fmt::format("numerics.duration={:.17g}", disks.model.numerics.duration + dt)});
+  CHECK(run(longer, fresh_dir("past_end_c"), o).status == "completed");
+}
