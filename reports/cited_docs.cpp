@@ -1,11 +1,14 @@
 #include "cited_docs.hpp"
 
 #include <cctype>
-#include <fstream>
+#include <cstdlib>
 #include <regex>
 #include <set>
-#include <sstream>
 #include <vector>
+
+#include <cmark-gfm-core-extensions.h>
+#include <cmark-gfm-extension_api.h>
+#include <cmark-gfm.h>
 
 #include <fmt/format.h>
 
@@ -16,40 +19,6 @@ namespace report {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool starts_with(const std::string& s, const std::string& p) { return s.rfind(p, 0) == 0; }
-
-/// Inline Markdown on escaped text: `code`, **bold**.
-std::string inline_md(const std::string& raw) {
-  std::string t = html_escape(raw);
-  static const std::regex code("`([^`]+)`"), letter("\\*([A-Za-z])\\*"), bold("\\*\\*([^*]+)\\*\\*"),
-      italic("\\*([^*\\s][^*]*)\\*");
-  static const std::regex bold_italic_tail("\\*\\*([^*]+)\\*([^*]+)\\*\\*\\*");  // **K*n***
-  t = std::regex_replace(t, code, "<code>$1</code>");
-  t = std::regex_replace(t, bold_italic_tail, "<strong>$1<em>$2</em></strong>");
-  t = std::regex_replace(t, letter, "<em>$1</em>");  // "**K*n***": the letter first, then the bold around it
-  t = std::regex_replace(t, bold, "<strong>$1</strong>");
-  t = std::regex_replace(t, italic, "<em>$1</em>");
-  return t;
-}
-
-std::vector<std::string> table_cells(const std::string& line) {
-  std::vector<std::string> cells;
-  std::string cur;
-  for (std::size_t k = 1; k < line.size(); ++k) {
-    if (line[k] == '|' && line[k - 1] != '\\') {
-      cells.push_back(cur);
-      cur.clear();
-    } else {
-      cur += line[k];
-    }
-  }
-  for (auto& c : cells) {
-    const auto a = c.find_first_not_of(' '), b = c.find_last_not_of(' ');
-    c = a == std::string::npos ? std::string() : c.substr(a, b - a + 1);
-  }
-  return cells;
-}
 
 /// The equation labels a paragraph of model.md states: "(K19", "(M15.1)", and every label of a range
 /// "(K16–K19)".
@@ -68,138 +37,134 @@ std::vector<std::string> labels_in(const std::string& text) {
   return out;
 }
 
-/// One document → HTML; anchors: headings "doc N.M" (numbered) and the labels / findings entries.
-std::string render_md(const std::string& doc, const std::string& text, std::map<std::string, std::string>& anchors) {
-  std::istringstream in(text);
-  std::string line, out, para;
-  std::vector<std::string> table, list;
-  bool fence = false, after_first_section = false;
-  std::string pre;
-  auto flush_para = [&] {
-    if (para.empty()) return;
-    std::string ids;
-    if (doc == "model" && after_first_section)
-      for (const auto& l : labels_in(para))
-        if (!anchors.count(l)) {
-          const std::string id = "doc-model-" + slug(l);
-          anchors[l] = id;
-          ids += "<a id=\"" + id + "\"></a>";
-        }
-    static const std::regex entry("^\\*\\*((F[0-9]+)|([KM]-[0-9]+))\\.");
-    std::smatch m;
-    if (doc == "findings" && std::regex_search(para, m, entry)) {
-      const std::string id = "doc-findings-" + std::string(m[1]);
-      anchors["F " + std::string(m[1])] = id;
-      ids += "<a id=\"" + id + "\"></a>";
+/// The text of an inline subtree: text and code as written, line breaks as spaces, markup dropped.
+std::string plain_text(cmark_node* node) {
+  std::string out;
+  cmark_iter* it = cmark_iter_new(node);
+  for (cmark_event_type ev; (ev = cmark_iter_next(it)) != CMARK_EVENT_DONE;) {
+    if (ev != CMARK_EVENT_ENTER) continue;
+    cmark_node* n = cmark_iter_get_node(it);
+    const auto type = cmark_node_get_type(n);
+    if (type == CMARK_NODE_TEXT || type == CMARK_NODE_CODE) out += cmark_node_get_literal(n);
+    else if (type == CMARK_NODE_SOFTBREAK || type == CMARK_NODE_LINEBREAK) out += ' ';
+  }
+  cmark_iter_free(it);
+  return out;
+}
+
+/// HTML of our own (ids) in the tree: custom nodes are written as they are, also without CMARK_OPT_UNSAFE
+/// (which governs the raw HTML of the Markdown text, escaped here).
+cmark_node* custom_node(cmark_node_type type, const std::string& enter, const std::string& exit) {
+  cmark_node* n = cmark_node_new(type);
+  cmark_node_set_on_enter(n, enter.c_str());
+  cmark_node_set_on_exit(n, exit.c_str());
+  return n;
+}
+
+/// One document → HTML with cmark-gfm (CommonMark and GitHub's tables); raw HTML in the text is not passed
+/// through. Anchors: headings "doc N.M" (numbered) and the labels / findings entries. `#` and `##` are
+/// written as <h{top}>, `###` as <h{top+1}>, …, at most <h6>.
+std::string render_md(const std::string& doc, const std::string& text, std::map<std::string, std::string>& anchors,
+                      int top) {
+  static const bool registered = [] {
+    cmark_gfm_core_extensions_ensure_registered();
+    return true;
+  }();
+  (void)registered;
+  const int options = CMARK_OPT_DEFAULT;
+  cmark_parser* parser = cmark_parser_new(options);
+  if (cmark_syntax_extension* table = cmark_find_syntax_extension("table"))
+    cmark_parser_attach_syntax_extension(parser, table);
+  cmark_parser_feed(parser, text.data(), text.size());
+  cmark_node* root = cmark_parser_finish(parser);
+
+  std::vector<cmark_node*> blocks, raw;  // headings and paragraphs in the order of the text; raw HTML
+  cmark_iter* it = cmark_iter_new(root);
+  for (cmark_event_type ev; (ev = cmark_iter_next(it)) != CMARK_EVENT_DONE;) {
+    cmark_node* n = cmark_iter_get_node(it);
+    const auto type = cmark_node_get_type(n);
+    if (ev == CMARK_EVENT_ENTER && (type == CMARK_NODE_HEADING || type == CMARK_NODE_PARAGRAPH)) blocks.push_back(n);
+    if (ev == CMARK_EVENT_ENTER && (type == CMARK_NODE_HTML_INLINE || type == CMARK_NODE_HTML_BLOCK)) raw.push_back(n);
+  }
+  cmark_iter_free(it);
+  // raw HTML is shown as text, escaped (cmark would leave it out as "<!-- raw HTML omitted -->")
+  for (cmark_node* n : raw) {
+    cmark_node* t = cmark_node_new(CMARK_NODE_TEXT);
+    cmark_node_set_literal(t, cmark_node_get_literal(n));
+    if (cmark_node_get_type(n) == CMARK_NODE_HTML_BLOCK) {
+      cmark_node* p = cmark_node_new(CMARK_NODE_PARAGRAPH);
+      cmark_node_append_child(p, t);
+      t = p;
     }
-    out += "<p>" + ids + inline_md(para) + "</p>\n";
-    para.clear();
+    cmark_node_replace(n, t);
+    cmark_node_free(n);
+  }
+
+  std::set<std::string> used;  // ids given in this text
+  auto unique = [&](const std::string& base) {
+    std::string id = base;
+    for (int k = 2; used.count(id); ++k) id = base + "-" + std::to_string(k);
+    used.insert(id);
+    return id;
   };
-  auto flush_table = [&] {
-    if (table.empty()) return;
-    out += "<table>\n";
-    bool head = true;
-    for (const auto& row : table) {
-      const auto cells = table_cells(row);
-      if (!cells.empty() && cells[0].find("---") != std::string::npos) continue;
-      out += "<tr>";
-      for (const auto& c : cells) out += (head ? "<th>" : "<td>") + inline_md(c) + (head ? "</th>" : "</td>");
-      out += "</tr>\n";
-      head = false;
-    }
-    out += "</table>\n";
-    table.clear();
-  };
-  auto flush_list = [&] {
-    if (list.empty()) return;
-    out += "<ul>\n";
-    for (const auto& item : list) {
-      para = item;
-      std::string before = out;
-      out.clear();
-      flush_para();
-      std::string li = out;  // "<p>…</p>\n" → "<li>…</li>\n"
-      out = before + "<li>" + li.substr(3, li.size() - 8) + "</li>\n";
-    }
-    out += "</ul>\n";
-    list.clear();
-  };
-  auto flush_all = [&] {
-    flush_para();
-    flush_table();
-    flush_list();
-  };
-  while (std::getline(in, line)) {
-    if (starts_with(line, "```")) {
-      if (fence) {
-        out += "<pre>" + html_escape(pre) + "</pre>\n";
-        pre.clear();
-      } else {
-        flush_all();
-      }
-      fence = !fence;
-      continue;
-    }
-    if (fence) {
-      pre += line + "\n";
-      continue;
-    }
-    if (line.empty()) {
-      flush_all();
-      continue;
-    }
-    if (line.size() >= 3 && line.find_first_not_of('-') == std::string::npos) {  // a rule
-      flush_all();
-      out += "<hr>\n";
-      continue;
-    }
-    if (line[0] == '#') {
-      flush_all();
-      const auto level = line.find_first_not_of('#');
-      const std::string title = line.substr(std::min(line.size(), level + 1));
+  bool after_first_section = false;
+  for (cmark_node* n : blocks) {
+    if (cmark_node_get_type(n) == CMARK_NODE_HEADING) {
+      const int level = cmark_node_get_heading_level(n);
+      const std::string title = plain_text(n);
       static const std::regex number("^([0-9]+(?:\\.[0-9]+)*)\\.?\\s");
       std::smatch m;
       std::string id = "doc-" + doc + "-" + slug(title);
-      if (std::regex_search(title, m, number)) {
-        id = "doc-" + doc + "-" + slug(std::string(m[1]));
-        anchors[doc + " " + std::string(m[1])] = id;
-      }
-      if (level == 1) anchors["doc " + doc] = id = "doc-" + doc;
+      if (std::regex_search(title, m, number)) id = "doc-" + doc + "-" + slug(std::string(m[1]));
+      if (level == 1) id = "doc-" + doc;
+      id = unique(id);
+      if (level == 1) anchors["doc " + doc] = id;
+      else if (m.size() > 1 && m[1].matched) anchors[doc + " " + std::string(m[1])] = id;
       if (level == 2) after_first_section = true;
-      const int h = static_cast<int>(std::min<std::size_t>(std::max<std::size_t>(level + 1, 3), 6));  // #, ## → h3
-      out += fmt::format("<h{} id=\"{}\">{}</h{}>\n", h, id, inline_md(title), h);
+      const int h = std::min(6, std::max(top, top + level - 2));
+      // the heading with its id: a custom block around the heading's inline content
+      cmark_node* block = custom_node(CMARK_NODE_CUSTOM_BLOCK, fmt::format("<h{} id=\"{}\">", h, id),
+                                      fmt::format("</h{}>", h));
+      while (cmark_node* child = cmark_node_first_child(n)) {
+        cmark_node_unlink(child);
+        cmark_node_append_child(block, child);
+      }
+      cmark_node_replace(n, block);
+      cmark_node_free(n);
       continue;
     }
-    if (line[0] == '|') {
-      flush_para();
-      flush_list();
-      table.push_back(line);
-      continue;
+    std::string ids;
+    if (doc == "model" && after_first_section)
+      for (const auto& l : labels_in(plain_text(n)))
+        if (!anchors.count(l)) {
+          const std::string id = unique("doc-model-" + slug(l));
+          anchors[l] = id;
+          ids += "<a id=\"" + id + "\"></a>";
+        }
+    cmark_node* first = cmark_node_first_child(n);
+    static const std::regex entry("^((F[0-9]+)|([KM]-[0-9]+))\\.");
+    std::smatch m;
+    const std::string lead = first && cmark_node_get_type(first) == CMARK_NODE_STRONG ? plain_text(first) : "";
+    if (doc == "findings" && std::regex_search(lead, m, entry)) {
+      const std::string id = unique("doc-findings-" + std::string(m[1]));
+      anchors["F " + std::string(m[1])] = id;
+      ids += "<a id=\"" + id + "\"></a>";
     }
-    if (starts_with(line, "- ") || starts_with(line, "* ")) {
-      flush_para();
-      flush_table();
-      list.push_back(line.substr(2));
-      continue;
-    }
-    if (!list.empty() && starts_with(line, "  ")) {
-      list.back() += " " + line.substr(line.find_first_not_of(' '));
-      continue;
-    }
-    flush_table();
-    flush_list();
-    para += (para.empty() ? "" : " ") + line;
+    if (!ids.empty()) cmark_node_prepend_child(n, custom_node(CMARK_NODE_CUSTOM_INLINE, ids, ""));
   }
-  flush_all();
-  if (fence) out += "<pre>" + html_escape(pre) + "</pre>\n";
+  char* html = cmark_render_html(root, options, cmark_parser_get_syntax_extensions(parser));
+  std::string out(html);
+  free(html);  // NOLINT: cmark allocates with the default allocator
+  cmark_node_free(root);
+  cmark_parser_free(parser);
   return out;
 }
 
 }  // namespace
 
-std::string markdown_html(const std::string& doc, const std::string& text) {
+std::string markdown_html(const std::string& doc, const std::string& text, int top) {
   std::map<std::string, std::string> anchors;  // a text's own headings only: nothing cites them
-  return render_md(doc, text, anchors);
+  return render_md(doc, text, anchors, top);
 }
 
 CitedDocs render_cited_docs(const fs::path& docs_dir) {
@@ -213,7 +178,7 @@ CitedDocs render_cited_docs(const fs::path& docs_dir) {
     const fs::path p = docs_dir / (name + ".md");
     if (!fs::is_regular_file(p)) continue;
     body += "<section class=\"doc\" id=\"doc-section-" + name + "\">\n<h2>" + html_escape(title) + "</h2>\n" +
-            render_md(name, read_text_file(p), d.anchors) + "</section>\n";
+            render_md(name, read_text_file(p), d.anchors, 3) + "</section>\n";
   }
   if (body.empty()) return d;
   d.html = "<div id=\"cited-docs\">\n<p class=\"small\">The project's own documentation, as in the repository's "

@@ -21,9 +21,10 @@ struct CitedDocs {
 /// Renders docs_dir/{model,references,findings}.md; missing files are left out.
 CitedDocs render_cited_docs(const std::filesystem::path& docs_dir);
 
-/// One Markdown text (headings, paragraphs, tables, lists, code fences) as HTML, as the documents are
-/// rendered; heading ids start with "doc-<doc>-".
-std::string markdown_html(const std::string& doc, const std::string& text);
+/// One Markdown text (CommonMark with GitHub's tables, rendered by cmark-gfm; raw HTML in it is escaped)
+/// as HTML, as the documents are rendered; heading ids start with "doc-<doc>-". `#` and `##` become
+/// <h{top}>, `###` <h{top+1}>, and so on (at most <h6>).
+std::string markdown_html(const std::string& doc, const std::string& text, int top = 3);
 
 /// Links every citation in the text of an HTML page (outside tags, <a>, <svg>, <style>, <script>) to
 /// its anchor; a citation without an anchor stays text. Returns the page.

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "cited_docs.hpp"
 #include "inline_svg.hpp"
 #include "sensitivity_overview.hpp"
 #include "text_format.hpp"
@@ -39,7 +40,9 @@ figcaption { font-size: .9em; color: #57606a; margin-top: .2em; }
 .missing-figure { border: 1px dashed #d0d7de; padding: 2em 1em; color: #953800; }
 .small { font-size: .85em; color: #57606a; }
 pre { background: #f6f8fa; padding: .8em; overflow-x: auto; }
-.readme { white-space: pre-wrap; font-size: .92em; background: #f6f8fa; padding: .6em .8em; }
+.readme { font-size: .92em; background: #f6f8fa; padding: .1em .8em; }
+.readme table { background: #fff; }
+.readme h4 { margin: .8em 0 .3em; }
 table.overview td:nth-child(2) { max-width: 38em; }
 footer { margin-top: 3em; font-size: .85em; color: #57606a; }
 nav#toc ol { columns: 2; column-gap: 2.5em; font-size: .92em; }
@@ -235,10 +238,14 @@ std::string study_section(const StudyReport& study) {
         "<p class=\"requirement\"><strong>Requirement.</strong> " + escape(requirement) + "</p>\n";
   const auto readme = readme_parts(result);
   if (!readme.purpose.empty()) {
-    out += "<p class=\"purpose\"><strong>Purpose (README).</strong> " + escape(readme.purpose) + "</p>\n";
+    // the README's Markdown rendered as the docs are (cited_docs.hpp); its headings below the study's <h3>
+    const std::string doc = "readme-" + slug(source.folder);
+    const std::string purpose = markdown_html(doc, readme.purpose, 4);
+    const std::string label = "<p class=\"purpose\"><strong>Purpose (README).</strong>";
+    out += purpose.rfind("<p>", 0) == 0 ? label + " " + purpose.substr(3) : label + "</p>\n" + purpose;
     if (!readme.rest.empty())
-      out += "<details open><summary>Findings and known limits (README)</summary>\n<div class=\"readme\">" +
-             escape(readme.rest) + "</div>\n</details>\n";
+      out += "<details open><summary>Findings and known limits (README)</summary>\n<div class=\"readme\">\n" +
+             markdown_html(doc, readme.rest, 4) + "</div>\n</details>\n";
   }
   const auto& provenance = object_field(result, "provenance");
   const auto command = text_field(provenance, "command");

@@ -16,6 +16,8 @@ for arg in "$@"; do
 done
 pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtomlplusplus-dev
       libcli11-dev nlohmann-json3-dev libfmt-dev gnuplot-nox
+      # Markdown (READMEs, docs/) rendered on the report's page: cmark-gfm with GitHub's tables (reports/cited_docs.cpp)
+      libcmark-gfm-dev libcmark-gfm-extensions-dev
       # PNG force-network pictures (zlib) and the check of the ParaView snapshots with VTK's reader
       # (ctest -L tools, tests/tools/check_vtk_snapshots.py)
       zlib1g-dev python3-vtk9

@@ -8,7 +8,9 @@ Checks (each failure is listed; exit status 1 if any):
     contains drawn paths (no "missing figure" placeholder); every <img> loaded (naturalWidth > 0);
   - no tick label repeated along an axis of a figure (e.g. every tick reading 1.25e7);
   - no NaN / inf in the visible text of the page (the cited documentation's prose aside);
-  - every link inside the page (contents, studies, citations of docs/) reaches an element of the page.
+  - every link inside the page (contents, studies, citations of docs/) reaches an element of the page;
+  - no raw Markdown visible (READMEs and docs/ are rendered, reports/cited_docs.hpp): no table rule |---|,
+    no line starting with "# " (up to ######), no **bold**, outside code blocks and inline code.
 The page is copied with a small script appended that measures the figures in the browser and writes
 the results into the DOM, which Chromium prints (--dump-dom).
 """
@@ -29,6 +31,13 @@ PROBE = r"""
   if (cited) cited.style.display = 'none';
   const out = {figures: [], images: [], text: document.body.innerText, broken_links: [], cites: 0};
   if (cited) cited.style.display = '';
+  // the visible text with the cited documentation, code blocks and inline code left out (a "# comment"
+  // line of a shell example is no raw Markdown): the text the raw-Markdown check reads
+  const code = Array.from(document.querySelectorAll('pre, code'));
+  const shown = code.map(function (e) { return e.style.display; });
+  code.forEach(function (e) { e.style.display = 'none'; });
+  out.prose = document.body.innerText;
+  code.forEach(function (e, k) { e.style.display = shown[k]; });
   // every link inside the page (table of contents, study links, citations) reaches an element
   document.querySelectorAll('a[href^="#"]').forEach(function (a) {
     const id = decodeURIComponent(a.getAttribute('href').slice(1));
@@ -102,6 +111,21 @@ def repeated_ticks(texts):
     return problems
 
 
+RAW_MARKDOWN = (("table rule", re.compile(r"\|\s*:?-{3,}:?\s*\|")),
+                ("heading", re.compile(r"^[ \t]*#{1,6} \S", re.M)),
+                ("bold", re.compile(r"\*\*[^*\s](?:[^*\n]*[^*\s])?\*\*")))
+
+
+def raw_markdown(text):
+    """Markdown a reader sees as written (not rendered): a table rule |---|, a line "# heading", **bold**."""
+    problems = []
+    for what, pattern in RAW_MARKDOWN:
+        for m in list(pattern.finditer(text))[:5]:
+            start = max(0, m.start() - 40)
+            problems.append(f"raw Markdown ({what}) in the page: …" + text[start:m.end() + 40].replace("\n", " ") + "…")
+    return problems
+
+
 def main():
     args = sys.argv[1:]
     chromium = shutil.which("chromium") or shutil.which("chromium-browser") or "chromium"
@@ -158,12 +182,13 @@ def main():
         problems.append("NaN/inf in the page: …" + result["text"][start:m.end() + 20].replace("\n", " ") + "…")
         if len(problems) > 40:
             break
+    problems += raw_markdown(result["prose"])
     print(f"browser check: {len(result['figures'])} figures, {len(result['images'])} images, "
           f"{len(result['text'])} characters of text, {result['cites']} citations linked to the cited documentation")
     for p in problems:
         print("  FAIL " + p)
     if not problems:
-        print("  all figures rendered; no repeated tick labels; no NaN/inf")
+        print("  all figures rendered; no repeated tick labels; no NaN/inf; no raw Markdown")
     return 1 if problems else 0
 
 

@@ -67,3 +67,17 @@ TEST_CASE("Citations in text are linked, not inside tags, links, figures or unkn
   // without docs nothing changes
   CHECK(report::link_citations(page, report::CitedDocs{}) == page);
 }
+
+TEST_CASE("Markdown renders with cmark-gfm (tables and emphasis and lists) and raw HTML stays escaped", "[report][docs]") {
+  const std::string html = report::markdown_html(
+      "readme-x", "## Measured (K19)\n\n| | K19 1e-4 |\n|---|---|\n| rate | **61.9** \\| 62 |\n\n"
+                  "**Reference.** a <script>alert(1)</script> text\n\n- one\n- two\n",
+      4);
+  CHECK(html.find("<h4 id=\"doc-readme-x-Measured--K19-\">") != std::string::npos);  // `##` below the study's <h3>
+  CHECK(html.find("<th>K19 1e-4</th>") != std::string::npos);
+  CHECK(html.find("<td><strong>61.9</strong> | 62</td>") != std::string::npos);  // an escaped pipe in a cell
+  CHECK(html.find("<p><strong>Reference.</strong> a &lt;script&gt;alert(1)&lt;/script&gt; text</p>") != std::string::npos);
+  CHECK(html.find("<li>one</li>") != std::string::npos);
+  CHECK(html.find("|---|") == std::string::npos);
+  CHECK(html.find("<script>") == std::string::npos);
+}
