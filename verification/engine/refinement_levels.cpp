@@ -104,13 +104,13 @@ Refinement read_levels(const toml::table& root, const toml::table* r, const std:
     const toml::table* t = n.as_table();
     if (!t) fail_at(file, n, "level", "expected [[level]] tables, each with label, h (or n), set and args");
     const std::size_t k = out.levels.size();
-    for (const auto& [key, v] : *t)
-      if (key.str() != "label" && key.str() != "h" && key.str() != "n" && key.str() != "set" && key.str() != "args")
-        fail_at(file, v, fmt::format("level.{}", key.str()),
-                fmt::format("unknown key (expected label, h or n, set, args){}", [&] {
-                  const std::string near = dem::nearest_word(std::string(key.str()), {"label", "h", "n", "set", "args"});
-                  return near.empty() ? std::string() : fmt::format("; did you mean '{}'?", near);
-                }()));
+    for (const auto& [key, v] : *t) {
+      const std::string name(key.str());
+      if (name == "label" || name == "h" || name == "n" || name == "set" || name == "args") continue;
+      const std::string near = dem::nearest_word(name, {"label", "h", "n", "set", "args"});
+      fail_at(file, v, "level." + name, fmt::format("unknown key (expected label, h or n, set, args){}",
+                                                    near.empty() ? std::string() : fmt::format("; did you mean '{}'?", near)));
+    }
     RefinementLevel l;
     if (const toml::node* x = t->get("label")) {
       const auto s = x->value_exact<std::string>();
