@@ -2,6 +2,7 @@
 #include "ref/registry.hpp"
 
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 
 #include "ref/base_friction.hpp"
@@ -106,283 +107,314 @@ LatticeBeamModel lattice_beam_model(const Args& a) {
   return m;
 }
 
-const std::vector<Entry>& table() {
-  static const std::vector<Entry> entries{
-      {{"impact.restitution_A",
-        "restitution, contact ends at zero overlap (refs §1.2)",
-        {argument::zeta},
-        "1"},
-       [](const Args& a) { return restitution(ContactEnd::elastic_force_zero, a("zeta")); }},
-      {{"impact.restitution_B",
-        "restitution, contact ends at zero total force (refs §1.2)",
-        {argument::zeta},
-        "1"},
-       [](const Args& a) { return restitution(ContactEnd::total_force_zero, a("zeta")); }},
-      {{"impact.duration_A",
-        "contact duration, convention A; inf for zeta >= 1 (refs §1.2)",
-        {argument::mass, argument::stiffness, argument::damping},
-        "s"},
-       [](const Args& a) {
-         return contact_duration(ContactEnd::elastic_force_zero, a.oscillator());
-       }},
-      {{"impact.duration_B",
-        "contact duration, convention B (refs §1.2)",
-        {argument::mass, argument::stiffness, argument::damping},
-        "s"},
-       [](const Args& a) {
-         return contact_duration(ContactEnd::total_force_zero, a.oscillator());
-       }},
-      {{"impact.max_overlap",
-        "largest overlap during a normal impact (refs §1.2)",
-        {argument::mass, argument::stiffness, argument::damping, argument::approach_speed},
-        "m"},
-       [](const Args& a) { return maximum_overlap(a.oscillator(), a("v0")).overlap; }},
-      {{"oscillator.position",
-        "x(t) of m x'' + eta x' + K x = 0 (refs §1.1)",
-        {argument::mass, argument::stiffness, argument::damping, argument::position0,
-         argument::velocity0, argument::time},
-        "m"},
-       [](const Args& a) {
-         return oscillator_state(a.oscillator(), {a("x0"), a("v0")}, a("t")).position;
-       }},
-      {{"oscillator.velocity",
-        "x'(t) of m x'' + eta x' + K x = 0 (refs §1.1)",
-        {argument::mass, argument::stiffness, argument::damping, argument::position0,
-         argument::velocity0, argument::time},
-        "m/s"},
-       [](const Args& a) {
-         return oscillator_state(a.oscillator(), {a("x0"), a("v0")}, a("t")).velocity;
-       }},
-      {{"free_fall.position",
-        "x0 + v0 t + g t^2/2 (refs §1.6)",
-        {argument::position0, argument::velocity0, argument::gravity, argument::time},
-        "m"},
-       [](const Args& a) { return free_fall_position(a("x0"), a("v0"), a("g"), a("t")); }},
-      {{"free_fall.velocity",
-        "v0 + g t (refs §1.6)",
-        {argument::velocity0, argument::gravity, argument::time},
-        "m/s"},
-       [](const Args& a) { return free_fall_velocity(a("v0"), a("g"), a("t")); }},
-      {{"face.bending_moment",
-        "moment of a uniform normal spring layer on a face of half-length a turned by theta: k a^2 theta / 3",
-        {{"k", "N/m", "total normal stiffness of the face"}, {"a", "m", "half-length of the face"},
-         {"theta", "rad", "small rotation about the face centre"}},
-        "N m"},
-       [](const Args& a) { return spring_layer_moment(a("k"), a("a"), a("theta")); }},
-      {{"rest.overlap",
-        "equilibrium overlap m g / K on a linear spring (refs §1.6, §1.7)",
-        {argument::mass, argument::gravity, argument::stiffness},
-        "m"},
-       [](const Args& a) { return resting_overlap(a("m"), a("g"), a("K")); }},
-      {{"stability.K18_limit_W",
-        "largest stable omega0 dt of K18 (refs §1.5)",
-        {argument::zeta},
-        "1"},
-       [](const Args& a) { return stability_limit(Scheme::K18, a("zeta")); }},
-      {{"stability.K19_limit_W",
-        "largest stable omega0 dt of K19 (refs §1.5)",
-        {argument::zeta},
-        "1"},
-       [](const Args& a) { return stability_limit(Scheme::K19, a("zeta")); }},
-      {{"stability.K18_limit_dt",
-        "largest stable dt of K18 for one mass on K, eta (refs §1.5)",
-        {argument::mass, argument::stiffness, argument::damping},
-        "s"},
-       [](const Args& a) { return stability_limit_time_step(Scheme::K18, a.oscillator()); }},
-      {{"stability.K19_limit_dt",
-        "largest stable dt of K19 for one mass on K, eta (refs §1.5)",
-        {argument::mass, argument::stiffness, argument::damping},
-        "s"},
-       [](const Args& a) { return stability_limit_time_step(Scheme::K19, a.oscillator()); }},
-      {{"incline.slide_distance",
-        "slide of a block from rest, 0 if it holds (M20, refs §2.1)",
-        {argument::slope, argument::friction, argument::gravity, argument::time},
-        "m"},
-       [](const Args& a) { return slide_distance(a("alpha"), a("phi"), a("g"), a("t")); }},
-      {{"incline.mode",
-        "Sagaseta mode: 0 stable, 1 slide, 2 topple, 3 slide+topple (refs §2.3)",
-        {argument::slope,
-         argument::friction,
-         {"b", "m", "block base along the slope"},
-         {"h", "m", "block height"}},
-        "1"},
-       [](const Args& a) {
-         detail::require_positive("incline.mode", "h", a("h"));
-         return static_cast<double>(mode_sagaseta(a("alpha"), a("phi"), a("b") / a("h")));
-       }},
-      {{"incline.mode_gb",
-        "Goodman & Bray mode: 0 stable, 1 slide, 2 topple, 3 slide+topple (refs §2.2)",
-        {argument::slope,
-         argument::friction,
-         {"b", "m", "block base along the slope"},
-         {"h", "m", "block height"}},
-        "1"},
-       [](const Args& a) {
-         detail::require_positive("incline.mode_gb", "h", a("h"));
-         return static_cast<double>(mode_goodman_bray(a("alpha"), a("phi"), a("b") / a("h")));
-       }},
-      {{"base_friction.rate",
-        "Bray & Goodman rotation per plate travel dtheta/ddelta_B = -lambda, 0 if no toppling "
-        "(M25, refs §3.1-3.2; nested quadrature)",
-        {argument::tilt, argument::block_width, argument::block_height},
-        "rad/m"},
-       [](const Args& a) { return base_friction_rate(a("psi"), a("W"), a("H")); }},
-      {{"base_friction.theta",
-        "Bray & Goodman rotation at plate travel delta_B from tilt alpha, capped at pi/2 "
-        "(M25, refs §3.3; Odeint dopri5)",
-        {argument::slope, argument::plate_travel, argument::block_width, argument::block_height},
-        "rad"},
-       [](const Args& a) { return theta_at_travel(a("delta_B"), a("alpha"), a("W"), a("H")); }},
-      {{"base_friction.travel",
-        "plate travel that turns the block by theta from tilt alpha, inf if it does not topple "
-        "(M25, refs §3.3; quadrature)",
-        {argument::slope, argument::rotation, argument::block_width, argument::block_height},
-        "m"},
-       [](const Args& a) { return travel_at_theta(a("theta"), a("alpha"), a("W"), a("H")); }},
-      {{"base_friction.m21_rate",
-        "quasi-static dtheta/ddelta_B of a rigid block of n_w x n_h square elements under "
-        "Matsui's element law (M21, refs §3.7)",
-        {argument::tilt, argument::block_width, argument::block_height, argument::elements_w,
-         argument::elements_h},
-        "rad/m"},
-       [](const Args& a) {
-         return m21_rate(a("psi"), a("W"), a("H"), a.count("n_w"), a.count("n_h"));
-       }},
-      {{"base_friction.theta_m21",
-        "rotation at plate travel delta_B under the M21 rate (refs §3.7; Odeint dopri5)",
-        {argument::slope, argument::plate_travel, argument::block_width, argument::block_height,
-         argument::elements_w, argument::elements_h},
-        "rad"},
-       [](const Args& a) {
-         return theta_at_travel_m21(a("delta_B"), a("alpha"), a("W"), a("H"), a.count("n_w"),
-                                    a.count("n_h"));
-       }},
-      {{"base_friction.slide_ratio",
-        "slide per plate travel of a block on its long face, sin alpha - tan phi_w cos alpha, "
-        "0 if it holds (M22, refs §3.5)",
-        {argument::slope, {"phi_w", "rad", "block-slope friction angle"}},
-        "1"},
-       [](const Args& a) { return slide_ratio(a("alpha"), a("phi_w")); }},
-      {{"kiyama.contact_stiffness",
-        "K_n = q/delta of two equal cylinders (K22, K23, refs §5)",
-        {{"E", "Pa", "Young's modulus"},
-         {"nu", "1", "Poisson's ratio"},
-         {"r", "m", "radius of both cylinders"},
-         {"q", "N/m", "line load"},
-         {"c", "1", "approach constant: 1.5 (K23) or 2/3 (K22.a)"}},
-        "Pa"},
-       [](const Args& a) {
-         return contact_stiffness({.youngs_modulus = a("E"),
-                                   .poisson_ratio = a("nu"),
-                                   .radius1 = a("r"),
-                                   .radius2 = a("r"),
-                                   .line_load = a("q"),
-                                   .approach_constant = a("c")});
-       }},
-      {{"beam.lattice_stiffness",
-        "P/delta at mid-span of the square PRE lattice beam: Timoshenko with E = kn, G = ks/2, "
-        "kappa = 5/6, I_eff (refs §4.3), on two support springs k_c",
-        {argument::beam_width, argument::beam_depth, argument::beam_span,
-         {"kn", "Pa", "face normal stiffness per unit strain"},
-         {"ks", "Pa", "face shear stiffness per unit strain"}, argument::beam_rows,
-         argument::beam_segments, argument::beam_face_ends, argument::support_stiffness},
-        "N/m"},
-       [](const Args& a) {
-         const BeamSection s{a("b"), a("h"), a("L")};
-         const auto where = a("ends") != 0.0 ? SegmentPositions::face_ends : SegmentPositions::centres;
-         return stiffness_on_support_springs(
-             lattice_beam_stiffness(s, a("kn"), a("ks"), a.count("n_h"), a.count("N"), where), a("k_c"));
-       }},
-      {{"beam.continuum_stiffness",
-        "P/delta at mid-span of the continuum beam: Timoshenko with E, G = E/(2(1+nu)), kappa = 5/6 "
-        "(refs §4.1), on two support springs k_c",
-        {argument::beam_width, argument::beam_depth, argument::beam_span,
-         {"E", "Pa", "Young's modulus"}, {"nu", "1", "Poisson's ratio"}, argument::support_stiffness},
-        "N/m"},
-       [](const Args& a) {
-         const BeamSection s{a("b"), a("h"), a("L")};
-         const double G = a("E") / (2.0 * (1.0 + a("nu")));
-         return stiffness_on_support_springs(
-             timoshenko_stiffness(s, a("E"), G, shear_coefficient_parabolic()), a("k_c"));
-       }},
-      {{"beam.peak_load",
-        "P_max = 2 sigma_t b h^2 / (3 L) of a beam in three-point bending (refs §4.1)",
-        {argument::beam_width, argument::beam_depth, argument::beam_span,
-         {"sigma_t", "Pa", "flexural tensile strength"}},
-        "N"},
-       [](const Args& a) { return flexural_peak_load({a("b"), a("h"), a("L")}, a("sigma_t")); }},
-      {{"beam.first_crack_ratio",
-        "first-crack load of the lattice over P_max: 1 + 1/(n_h N) at segment centres, 1 + 2/n_h^2 "
-        "at face ends (refs §4.4; an estimate)",
-        {argument::beam_rows, argument::beam_segments, argument::beam_face_ends},
-        "1"},
-       [](const Args& a) {
-         const auto where = a("ends") != 0.0 ? SegmentPositions::face_ends : SegmentPositions::centres;
-         return lattice_first_crack_ratio(a.count("n_h"), a.count("N"), where);
-       }},
-      {{"beam.groove_first_crack_load",
-        "first-crack load of the lattice with the load disk (radius R) wedged between the two top "
-        "cores: beam theory with the wedge's thrust (ref/beam.hpp; refs §4.4 plus statics)",
-        {argument::beam_width, argument::beam_depth, argument::beam_span,
-         {"sigma_t", "Pa", "tensile strength of the face springs"}, argument::beam_rows,
-         argument::beam_segments, argument::beam_face_ends, {"R", "m", "load disk radius"}},
-        "N"},
-       [](const Args& a) {
-         const auto where = a("ends") != 0.0 ? SegmentPositions::face_ends : SegmentPositions::centres;
-         return groove_first_crack_load({a("b"), a("h"), a("L")}, a("sigma_t"), a.count("n_h"), a.count("N"),
-                                        where, a("R"));
-       }},
-      {{"silo.janssen_wall_force",
-        "horizontal force per unit thickness on a side-wall band z1 <= z <= z2 below the free surface of a "
-        "plane silo of width B, Janssen with lateral ratio K and wall friction mu_w (refs §6.1)",
-        {{"z1", "m", "upper depth"}, {"z2", "m", "lower depth"}, {"rho_b", "kg/m^3", "bulk density"},
-         {"g", "m/s^2", "gravity"}, {"B", "m", "silo width"}, {"K", "1", "lateral ratio"},
-         {"mu_w", "1", "wall friction coefficient"}},
-        "N/m"},
-       [](const Args& a) { return janssen_wall_force(a("z1"), a("z2"), a("rho_b"), a("g"), a("B"), a("K"), a("mu_w")); }},
-      {{"silo.k_geom",
-        "K_geom = (d_x/2)^2/d_y^2 of the (s-1)/s packing of disks of radius r in a box of width B (refs §6.1)",
-        {{"s", "1", "disks in a full row"}, {"B", "m", "silo width"}, {"r", "m", "disk radius"}},
-        "1"},
-       [](const Args& a) { return ordered_packing(a.count("s"), a("B"), a("r")).k_geom; }},
-      {{"silo.beverloo_2d",
-        "2D Beverloo mass flow rate per unit thickness W = C rho_b sqrt(g) (D - k d)^(3/2) (refs §6.2)",
-        {{"C", "1", "discharge coefficient"}, {"rho_b", "kg/m^3", "bulk density"}, {"g", "m/s^2", "gravity"},
-         {"D", "m", "slot width"}, {"k", "1", "empty-annulus factor"}, {"d", "m", "grain diameter"}},
-        "kg/(m s)"},
-       [](const Args& a) { return beverloo_2d(a("C"), a("rho_b"), a("g"), a("D"), a("k"), a("d")); }},
-      {{"base_friction.pre_face_rate",
-        "quasi-static dtheta/ddelta_B of a rigid n_w x n_h PRE block whose pivot element touches the "
-        "slope by face-end springs fixed in the wall frame (M2, M12, M13.2, M15.2, M19, M21; "
-        "ref/base_friction_pre_face.hpp)",
-        {argument::rotation, argument::slope, argument::block_width, argument::block_height,
-         argument::elements_w, argument::elements_h},
-        "rad/m"},
-       [](const Args& a) {
-         return pre_face_rate(a("theta"), a("alpha"), a("W"), a("H"), a.count("n_w"), a.count("n_h"));
-       }},
-      {{"base_friction.theta_pre_face",
-        "rotation at plate travel delta_B under the PRE model's own quasi-static rate "
-        "(pre_face_rate; Odeint dopri5)",
-        {argument::slope, argument::plate_travel, argument::block_width, argument::block_height,
-         argument::elements_w, argument::elements_h},
-        "rad"},
-       [](const Args& a) {
-         return theta_at_travel_pre_face(a("delta_B"), a("alpha"), a("W"), a("H"), a.count("n_w"),
-                                         a.count("n_h"));
-       }},
-      {{"beam.lattice_exact_stiffness",
-        "P/delta at mid-span (bottom point left of x = 0) of the bonded square PRE lattice on disk supports "
-        "under a load disk: the assembled linear stiffness matrix of the rigid elements, face springs "
-        "M6/M13/M15, disk contacts k_c, k_t (ref/lattice_beam.hpp)",
-        lattice_beam_arguments(false), "N/m"},
-       [](const Args& a) { return solve_lattice_beam(lattice_beam_model(a)).stiffness; }},
-      {{"beam.lattice_exact_first_crack_load",
-        "load at which the most stretched face spring of the linear lattice beam reaches sigma_t A/N (M8), "
-        "same model as beam.lattice_exact_stiffness",
-        lattice_beam_arguments(true), "N"},
-       [](const Args& a) { return solve_lattice_beam(lattice_beam_model(a), a("sigma_t")).first_crack_load; }},
+/// The solvers of single contacts: impact, oscillator, free fall, a face in bending, rest, stability limits (refs §1).
+std::vector<Entry> contact_entries() {
+  return {
+    {{"impact.restitution_A",
+      "restitution, contact ends at zero overlap (refs §1.2)",
+      {argument::zeta},
+      "1"},
+     [](const Args& a) { return restitution(ContactEnd::elastic_force_zero, a("zeta")); }},
+    {{"impact.restitution_B",
+      "restitution, contact ends at zero total force (refs §1.2)",
+      {argument::zeta},
+      "1"},
+     [](const Args& a) { return restitution(ContactEnd::total_force_zero, a("zeta")); }},
+    {{"impact.duration_A",
+      "contact duration, convention A; inf for zeta >= 1 (refs §1.2)",
+      {argument::mass, argument::stiffness, argument::damping},
+      "s"},
+     [](const Args& a) {
+       return contact_duration(ContactEnd::elastic_force_zero, a.oscillator());
+     }},
+    {{"impact.duration_B",
+      "contact duration, convention B (refs §1.2)",
+      {argument::mass, argument::stiffness, argument::damping},
+      "s"},
+     [](const Args& a) {
+       return contact_duration(ContactEnd::total_force_zero, a.oscillator());
+     }},
+    {{"impact.max_overlap",
+      "largest overlap during a normal impact (refs §1.2)",
+      {argument::mass, argument::stiffness, argument::damping, argument::approach_speed},
+      "m"},
+     [](const Args& a) { return maximum_overlap(a.oscillator(), a("v0")).overlap; }},
+    {{"oscillator.position",
+      "x(t) of m x'' + eta x' + K x = 0 (refs §1.1)",
+      {argument::mass, argument::stiffness, argument::damping, argument::position0,
+       argument::velocity0, argument::time},
+      "m"},
+     [](const Args& a) {
+       return oscillator_state(a.oscillator(), {a("x0"), a("v0")}, a("t")).position;
+     }},
+    {{"oscillator.velocity",
+      "x'(t) of m x'' + eta x' + K x = 0 (refs §1.1)",
+      {argument::mass, argument::stiffness, argument::damping, argument::position0,
+       argument::velocity0, argument::time},
+      "m/s"},
+     [](const Args& a) {
+       return oscillator_state(a.oscillator(), {a("x0"), a("v0")}, a("t")).velocity;
+     }},
+    {{"free_fall.position",
+      "x0 + v0 t + g t^2/2 (refs §1.6)",
+      {argument::position0, argument::velocity0, argument::gravity, argument::time},
+      "m"},
+     [](const Args& a) { return free_fall_position(a("x0"), a("v0"), a("g"), a("t")); }},
+    {{"free_fall.velocity",
+      "v0 + g t (refs §1.6)",
+      {argument::velocity0, argument::gravity, argument::time},
+      "m/s"},
+     [](const Args& a) { return free_fall_velocity(a("v0"), a("g"), a("t")); }},
+    {{"face.bending_moment",
+      "moment of a uniform normal spring layer on a face of half-length a turned by theta: k a^2 theta / 3",
+      {{"k", "N/m", "total normal stiffness of the face"}, {"a", "m", "half-length of the face"},
+       {"theta", "rad", "small rotation about the face centre"}},
+      "N m"},
+     [](const Args& a) { return spring_layer_moment(a("k"), a("a"), a("theta")); }},
+    {{"rest.overlap",
+      "equilibrium overlap m g / K on a linear spring (refs §1.6, §1.7)",
+      {argument::mass, argument::gravity, argument::stiffness},
+      "m"},
+     [](const Args& a) { return resting_overlap(a("m"), a("g"), a("K")); }},
+    {{"stability.K18_limit_W",
+      "largest stable omega0 dt of K18 (refs §1.5)",
+      {argument::zeta},
+      "1"},
+     [](const Args& a) { return stability_limit(Scheme::K18, a("zeta")); }},
+    {{"stability.K19_limit_W",
+      "largest stable omega0 dt of K19 (refs §1.5)",
+      {argument::zeta},
+      "1"},
+     [](const Args& a) { return stability_limit(Scheme::K19, a("zeta")); }},
+    {{"stability.K18_limit_dt",
+      "largest stable dt of K18 for one mass on K, eta (refs §1.5)",
+      {argument::mass, argument::stiffness, argument::damping},
+      "s"},
+     [](const Args& a) { return stability_limit_time_step(Scheme::K18, a.oscillator()); }},
+    {{"stability.K19_limit_dt",
+      "largest stable dt of K19 for one mass on K, eta (refs §1.5)",
+      {argument::mass, argument::stiffness, argument::damping},
+      "s"},
+     [](const Args& a) { return stability_limit_time_step(Scheme::K19, a.oscillator()); }},
   };
+}
+
+/// The solvers of blocks: on an incline (Sagaseta, Goodman & Bray) and in a base-friction model (M21; refs §2, §3).
+std::vector<Entry> block_entries() {
+  return {
+    {{"incline.slide_distance",
+      "slide of a block from rest, 0 if it holds (M20, refs §2.1)",
+      {argument::slope, argument::friction, argument::gravity, argument::time},
+      "m"},
+     [](const Args& a) { return slide_distance(a("alpha"), a("phi"), a("g"), a("t")); }},
+    {{"incline.mode",
+      "Sagaseta mode: 0 stable, 1 slide, 2 topple, 3 slide+topple (refs §2.3)",
+      {argument::slope,
+       argument::friction,
+       {"b", "m", "block base along the slope"},
+       {"h", "m", "block height"}},
+      "1"},
+     [](const Args& a) {
+       detail::require_positive("incline.mode", "h", a("h"));
+       return static_cast<double>(mode_sagaseta(a("alpha"), a("phi"), a("b") / a("h")));
+     }},
+    {{"incline.mode_gb",
+      "Goodman & Bray mode: 0 stable, 1 slide, 2 topple, 3 slide+topple (refs §2.2)",
+      {argument::slope,
+       argument::friction,
+       {"b", "m", "block base along the slope"},
+       {"h", "m", "block height"}},
+      "1"},
+     [](const Args& a) {
+       detail::require_positive("incline.mode_gb", "h", a("h"));
+       return static_cast<double>(mode_goodman_bray(a("alpha"), a("phi"), a("b") / a("h")));
+     }},
+    {{"base_friction.rate",
+      "Bray & Goodman rotation per plate travel dtheta/ddelta_B = -lambda, 0 if no toppling "
+      "(M25, refs §3.1-3.2; nested quadrature)",
+      {argument::tilt, argument::block_width, argument::block_height},
+      "rad/m"},
+     [](const Args& a) { return base_friction_rate(a("psi"), a("W"), a("H")); }},
+    {{"base_friction.theta",
+      "Bray & Goodman rotation at plate travel delta_B from tilt alpha, capped at pi/2 "
+      "(M25, refs §3.3; Odeint dopri5)",
+      {argument::slope, argument::plate_travel, argument::block_width, argument::block_height},
+      "rad"},
+     [](const Args& a) { return theta_at_travel(a("delta_B"), a("alpha"), a("W"), a("H")); }},
+    {{"base_friction.travel",
+      "plate travel that turns the block by theta from tilt alpha, inf if it does not topple "
+      "(M25, refs §3.3; quadrature)",
+      {argument::slope, argument::rotation, argument::block_width, argument::block_height},
+      "m"},
+     [](const Args& a) { return travel_at_theta(a("theta"), a("alpha"), a("W"), a("H")); }},
+    {{"base_friction.m21_rate",
+      "quasi-static dtheta/ddelta_B of a rigid block of n_w x n_h square elements under "
+      "Matsui's element law (M21, refs §3.7)",
+      {argument::tilt, argument::block_width, argument::block_height, argument::elements_w,
+       argument::elements_h},
+      "rad/m"},
+     [](const Args& a) {
+       return m21_rate(a("psi"), a("W"), a("H"), a.count("n_w"), a.count("n_h"));
+     }},
+    {{"base_friction.theta_m21",
+      "rotation at plate travel delta_B under the M21 rate (refs §3.7; Odeint dopri5)",
+      {argument::slope, argument::plate_travel, argument::block_width, argument::block_height,
+       argument::elements_w, argument::elements_h},
+      "rad"},
+     [](const Args& a) {
+       return theta_at_travel_m21(a("delta_B"), a("alpha"), a("W"), a("H"), a.count("n_w"),
+                                  a.count("n_h"));
+     }},
+    {{"base_friction.slide_ratio",
+      "slide per plate travel of a block on its long face, sin alpha - tan phi_w cos alpha, "
+      "0 if it holds (M22, refs §3.5)",
+      {argument::slope, {"phi_w", "rad", "block-slope friction angle"}},
+      "1"},
+     [](const Args& a) { return slide_ratio(a("alpha"), a("phi_w")); }},
+  };
+}
+
+/// The solvers of Kiyama's contact stiffness, the lattice beam and the silo (refs §4, §5, §6).
+std::vector<Entry> silo_and_beam_entries() {
+  return {
+    {{"kiyama.contact_stiffness",
+      "K_n = q/delta of two equal cylinders (K22, K23, refs §5)",
+      {{"E", "Pa", "Young's modulus"},
+       {"nu", "1", "Poisson's ratio"},
+       {"r", "m", "radius of both cylinders"},
+       {"q", "N/m", "line load"},
+       {"c", "1", "approach constant: 1.5 (K23) or 2/3 (K22.a)"}},
+      "Pa"},
+     [](const Args& a) {
+       return contact_stiffness({.youngs_modulus = a("E"),
+                                 .poisson_ratio = a("nu"),
+                                 .radius1 = a("r"),
+                                 .radius2 = a("r"),
+                                 .line_load = a("q"),
+                                 .approach_constant = a("c")});
+     }},
+    {{"beam.lattice_stiffness",
+      "P/delta at mid-span of the square PRE lattice beam: Timoshenko with E = kn, G = ks/2, "
+      "kappa = 5/6, I_eff (refs §4.3), on two support springs k_c",
+      {argument::beam_width, argument::beam_depth, argument::beam_span,
+       {"kn", "Pa", "face normal stiffness per unit strain"},
+       {"ks", "Pa", "face shear stiffness per unit strain"}, argument::beam_rows,
+       argument::beam_segments, argument::beam_face_ends, argument::support_stiffness},
+      "N/m"},
+     [](const Args& a) {
+       const BeamSection s{a("b"), a("h"), a("L")};
+       const auto where = a("ends") != 0.0 ? SegmentPositions::face_ends : SegmentPositions::centres;
+       return stiffness_on_support_springs(
+           lattice_beam_stiffness(s, a("kn"), a("ks"), a.count("n_h"), a.count("N"), where), a("k_c"));
+     }},
+    {{"beam.continuum_stiffness",
+      "P/delta at mid-span of the continuum beam: Timoshenko with E, G = E/(2(1+nu)), kappa = 5/6 "
+      "(refs §4.1), on two support springs k_c",
+      {argument::beam_width, argument::beam_depth, argument::beam_span,
+       {"E", "Pa", "Young's modulus"}, {"nu", "1", "Poisson's ratio"}, argument::support_stiffness},
+      "N/m"},
+     [](const Args& a) {
+       const BeamSection s{a("b"), a("h"), a("L")};
+       const double G = a("E") / (2.0 * (1.0 + a("nu")));
+       return stiffness_on_support_springs(
+           timoshenko_stiffness(s, a("E"), G, shear_coefficient_parabolic()), a("k_c"));
+     }},
+    {{"beam.peak_load",
+      "P_max = 2 sigma_t b h^2 / (3 L) of a beam in three-point bending (refs §4.1)",
+      {argument::beam_width, argument::beam_depth, argument::beam_span,
+       {"sigma_t", "Pa", "flexural tensile strength"}},
+      "N"},
+     [](const Args& a) { return flexural_peak_load({a("b"), a("h"), a("L")}, a("sigma_t")); }},
+    {{"beam.first_crack_ratio",
+      "first-crack load of the lattice over P_max: 1 + 1/(n_h N) at segment centres, 1 + 2/n_h^2 "
+      "at face ends (refs §4.4; an estimate)",
+      {argument::beam_rows, argument::beam_segments, argument::beam_face_ends},
+      "1"},
+     [](const Args& a) {
+       const auto where = a("ends") != 0.0 ? SegmentPositions::face_ends : SegmentPositions::centres;
+       return lattice_first_crack_ratio(a.count("n_h"), a.count("N"), where);
+     }},
+    {{"beam.groove_first_crack_load",
+      "first-crack load of the lattice with the load disk (radius R) wedged between the two top "
+      "cores: beam theory with the wedge's thrust (ref/beam.hpp; refs §4.4 plus statics)",
+      {argument::beam_width, argument::beam_depth, argument::beam_span,
+       {"sigma_t", "Pa", "tensile strength of the face springs"}, argument::beam_rows,
+       argument::beam_segments, argument::beam_face_ends, {"R", "m", "load disk radius"}},
+      "N"},
+     [](const Args& a) {
+       const auto where = a("ends") != 0.0 ? SegmentPositions::face_ends : SegmentPositions::centres;
+       return groove_first_crack_load({a("b"), a("h"), a("L")}, a("sigma_t"), a.count("n_h"), a.count("N"),
+                                      where, a("R"));
+     }},
+    {{"silo.janssen_wall_force",
+      "horizontal force per unit thickness on a side-wall band z1 <= z <= z2 below the free surface of a "
+      "plane silo of width B, Janssen with lateral ratio K and wall friction mu_w (refs §6.1)",
+      {{"z1", "m", "upper depth"}, {"z2", "m", "lower depth"}, {"rho_b", "kg/m^3", "bulk density"},
+       {"g", "m/s^2", "gravity"}, {"B", "m", "silo width"}, {"K", "1", "lateral ratio"},
+       {"mu_w", "1", "wall friction coefficient"}},
+      "N/m"},
+     [](const Args& a) { return janssen_wall_force(a("z1"), a("z2"), a("rho_b"), a("g"), a("B"), a("K"), a("mu_w")); }},
+    {{"silo.k_geom",
+      "K_geom = (d_x/2)^2/d_y^2 of the (s-1)/s packing of disks of radius r in a box of width B (refs §6.1)",
+      {{"s", "1", "disks in a full row"}, {"B", "m", "silo width"}, {"r", "m", "disk radius"}},
+      "1"},
+     [](const Args& a) { return ordered_packing(a.count("s"), a("B"), a("r")).k_geom; }},
+    {{"silo.beverloo_2d",
+      "2D Beverloo mass flow rate per unit thickness W = C rho_b sqrt(g) (D - k d)^(3/2) (refs §6.2)",
+      {{"C", "1", "discharge coefficient"}, {"rho_b", "kg/m^3", "bulk density"}, {"g", "m/s^2", "gravity"},
+       {"D", "m", "slot width"}, {"k", "1", "empty-annulus factor"}, {"d", "m", "grain diameter"}},
+      "kg/(m s)"},
+     [](const Args& a) { return beverloo_2d(a("C"), a("rho_b"), a("g"), a("D"), a("k"), a("d")); }},
+  };
+}
+
+/// The solvers of the PRE-face base-friction model and the exact linear lattice beam (refs §3, §4).
+std::vector<Entry> exact_entries() {
+  return {
+    {{"base_friction.pre_face_rate",
+      "quasi-static dtheta/ddelta_B of a rigid n_w x n_h PRE block whose pivot element touches the "
+      "slope by face-end springs fixed in the wall frame (M2, M12, M13.2, M15.2, M19, M21; "
+      "ref/base_friction_pre_face.hpp)",
+      {argument::rotation, argument::slope, argument::block_width, argument::block_height,
+       argument::elements_w, argument::elements_h},
+      "rad/m"},
+     [](const Args& a) {
+       return pre_face_rate(a("theta"), a("alpha"), a("W"), a("H"), a.count("n_w"), a.count("n_h"));
+     }},
+    {{"base_friction.theta_pre_face",
+      "rotation at plate travel delta_B under the PRE model's own quasi-static rate "
+      "(pre_face_rate; Odeint dopri5)",
+      {argument::slope, argument::plate_travel, argument::block_width, argument::block_height,
+       argument::elements_w, argument::elements_h},
+      "rad"},
+     [](const Args& a) {
+       return theta_at_travel_pre_face(a("delta_B"), a("alpha"), a("W"), a("H"), a.count("n_w"),
+                                       a.count("n_h"));
+     }},
+    {{"beam.lattice_exact_stiffness",
+      "P/delta at mid-span (bottom point left of x = 0) of the bonded square PRE lattice on disk supports "
+      "under a load disk: the assembled linear stiffness matrix of the rigid elements, face springs "
+      "M6/M13/M15, disk contacts k_c, k_t (ref/lattice_beam.hpp)",
+      lattice_beam_arguments(false), "N/m"},
+     [](const Args& a) { return solve_lattice_beam(lattice_beam_model(a)).stiffness; }},
+    {{"beam.lattice_exact_first_crack_load",
+      "load at which the most stretched face spring of the linear lattice beam reaches sigma_t A/N (M8), "
+      "same model as beam.lattice_exact_stiffness",
+      lattice_beam_arguments(true), "N"},
+     [](const Args& a) { return solve_lattice_beam(lattice_beam_model(a), a("sigma_t")).first_crack_load; }},
+  };
+}
+
+/// Every solver, in a fixed order (the groups above, one after the other).
+const std::vector<Entry>& table() {
+  static const std::vector<Entry> entries = [] {
+    std::vector<Entry> all;
+    for (auto make : {contact_entries, block_entries, silo_and_beam_entries, exact_entries}) {
+      std::vector<Entry> group = make();
+      all.insert(all.end(), std::make_move_iterator(group.begin()), std::make_move_iterator(group.end()));
+    }
+    return all;
+  }();
   return entries;
 }
 
