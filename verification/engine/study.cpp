@@ -84,6 +84,7 @@ StudyResult run_marked(const Study& s, const fs::path& file, const fs::path& out
       {"case", s.case_path}, {"parameter", s.parameter}, {"reference", s.reference_text}, {"setup", setup_of(run)},
       {"provenance", prov}, {"passed", run.passed}, {"checks", run.checks}, {"series", run.series},
       {"figures", figures}, {"tables", run.tables}};
+  if (s.ensemble) result["ensemble"] = ensemble_json(*s.ensemble);
   result["provenance"]["wall_time_s"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   result["provenance"]["command"] = fmt::format("dem2d study {} --out {} --jobs {}{}", file.string(), out.string(),

@@ -202,6 +202,11 @@ void fill_tables(StudyRun& run) {
   for (const TableDecl& d : s.tables) {
     nlohmann::json rows = nlohmann::json::array(), columns = nlohmann::json::array();
     auto cell = [&](std::size_t vi, const std::string& probe) -> nlohmann::json {
+      if (!run.ensemble_stats.empty() && run.ensemble_stats[vi].count(probe)) {  // an ensemble: mean ± interval
+        const EnsembleStat& st = run.ensemble_stats[vi].at(probe);
+        if (st.mean && st.half_width)
+          return fmt::format("{:.4g} ± {:.2g}", *st.mean * d.scale, *st.half_width * std::abs(d.scale));
+      }
       const auto x = probe_of(run.finest_runs[vi], probe);
       return x ? nlohmann::json(fmt::format("{:.4g}", *x * d.scale)) : nlohmann::json("—");
     };

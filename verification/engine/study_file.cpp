@@ -383,6 +383,15 @@ void check_probes(const Study& s, const toml::table& root, const std::string& fi
     sets.insert(sets.end(), v.set.begin(), v.set.end());
     if (s.kind == Kind::refinement)
       sets.insert(sets.end(), s.refinement.levels.back().set.begin(), s.refinement.levels.back().set.end());
+    if (s.ensemble) {  // the last member's overrides must read (the seed key, the shared overrides)
+      const std::vector<std::string> m = member_sets(*s.ensemble, s.ensemble->members);
+      sets.insert(sets.end(), m.begin(), m.end());
+      try {
+        (void)dem::read_case(s.case_file, sets);
+      } catch (const dem::CaseError& e) {
+        throw dem::CaseError(fmt::format("{}:{}: ensemble: variant \"{}\": {}", file, s.ensemble->line, v.label, e.what()));
+      }
+    }
     const dem::Case c = dem::read_case(s.case_file, sets);
     std::size_t k = 0;
     for (const Check& ch : s.checks) {
@@ -449,6 +458,7 @@ Study read_study(const fs::path& file_path) {
   }
   read_stability(s, top, file);
   read_mode_map(s, top, file);
+  s.ensemble = read_ensemble(top, s.kind == Kind::single);
   each_table(top, "check", file, [&](const TableReader& r, const toml::node& n) { s.checks.push_back(read_check(s, r, n)); });
   if (s.checks.empty()) top.fail("check", "missing: at least one [[check]] (a study without checks proves nothing)");
   each_table(top, "figure", file, [&](const TableReader& r, const toml::node& n) {

@@ -18,6 +18,7 @@
 
 #include "dem/cases/case_reader.hpp"
 #include "engine/refinement_levels.hpp"
+#include "engine/study_ensemble.hpp"
 
 namespace ver {
 
@@ -90,6 +91,7 @@ struct Study {
   std::vector<std::string> set;
   std::vector<Variant> variants;
   Refinement refinement;            // kind = refinement: the levels, coarse → fine (refinement_levels.hpp)
+  std::optional<Ensemble> ensemble; // kind = single: every variant as an ensemble of members (study_ensemble.hpp)
   double low = 0.0, high = 0.0, rel_tol = 1e-4;  // stability bisection
   std::vector<Check> checks;
   std::vector<Figure> figures;

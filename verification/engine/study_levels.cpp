@@ -107,7 +107,8 @@ void trend_check(StudyRun& run, const Check& c) {
     if (!applies(c, v)) continue;
     if (!run.finest_runs[vi].probes.count(c.probe)) fail(s, "check.probe", fmt::format("the case has no probe \"{}\"", c.probe));
     const std::optional<double> x = run.finest_runs[vi].probes.at(c.probe);
-    shown.push_back(fmt::format("{}: {}", v.label, fmt_value(x)));
+    shown.push_back(s.ensemble ? fmt::format("{}: {}", v.label, stat_words(run.ensemble_stats[vi].at(c.probe), s.ensemble->confidence))
+                               : fmt::format("{}: {}", v.label, fmt_value(x)));
     if (!x) {
       complete = false;
       continue;
@@ -155,6 +156,11 @@ void level_checks(StudyRun& run, const Check& c, const std::vector<RunOut>& runs
     const std::optional<double> ref =
         s.kind == Kind::refinement ? run.reference_of(c, v, levels.back().value, &levels.back()) : run.reference_of(c, v, 0.0);
     std::string note = finest.status == "blow-up" ? "blow-up: " + finest.message : "";
+    if (s.kind == Kind::single && s.ensemble) {  // the mean of the members, judged on its interval
+      const EnsembleStat& st = run.ensemble_stats[vi].at(c.probe);
+      run.add_ensemble_check(check_label(c, v), ref, st, c, (note.empty() ? "" : note + "; ") + "ensemble: " + stat_words(st, s.ensemble->confidence));
+      continue;
+    }
     if (s.kind == Kind::single) {
       run.add_check(check_label(c, v), ref, finest.probes.at(c.probe), c, std::nullopt, note);
       continue;
@@ -204,11 +210,13 @@ void run_levels(StudyRun& run) {
   const Study& s = run.s;
   refuse_moving_reference(run);
   const std::size_t nl = s.kind == Kind::single ? 1 : s.refinement.levels.size();
-  const std::vector<RunOut> runs = run.run_many(plan_levels(run, nl), run.opt.jobs);
+  std::vector<RunOut> runs = s.ensemble ? run.run_many(member_plan(run, plan_levels(run, nl)), run.opt.jobs)
+                                        : run.run_many(plan_levels(run, nl), run.opt.jobs);
   for (const auto& r : runs) {
     run.speed_sum += r.eps;
     ++run.speed_n;
   }
+  if (s.ensemble) runs = fold_members(run, runs);  // one run per variant: the members' means
   write_levels_csv(run, runs, nl);
   for (std::size_t vi = 0; vi < s.variants.size(); ++vi) run.finest_runs.push_back(runs[vi * nl + nl - 1]);
   for (const Check& c : s.checks) {

@@ -99,9 +99,11 @@ void StudyRun::add_check(const std::string& quantity, std::optional<double> refe
   if (dem && reference) {
     const double e = std::abs(*dem - *reference);
     err = c.relative ? e / std::abs(*reference) : e;
+    // above / below: beyond the reference by the margin (relative: a fraction of |reference|)
+    const double margin = c.relative ? c.tolerance * std::abs(*reference) : c.tolerance;
     if (c.expect == Expect::within) ok = *err <= c.tolerance;
-    else if (c.expect == Expect::above) ok = *dem > *reference + c.tolerance;
-    else ok = *dem < *reference - c.tolerance;
+    else if (c.expect == Expect::above) ok = *dem > *reference + margin;
+    else ok = *dem < *reference - margin;
   }
   bool order_ok = true;
   if (c.expected_order) order_ok = order && std::abs(*order - *c.expected_order) <= c.order_band;
@@ -115,6 +117,28 @@ void StudyRun::add_check(const std::string& quantity, std::optional<double> refe
                     {"order_band", c.expected_order ? nlohmann::json(c.order_band) : nlohmann::json(nullptr)},
                     {"expect", c.expect == Expect::within ? "within" : c.expect == Expect::above ? "above" : "below"},
                     {"passed", ok}, {"note", note}});
+}
+
+void StudyRun::add_ensemble_check(const std::string& quantity, std::optional<double> reference, const EnsembleStat& st,
+                                  const Check& c, const std::string& note) {
+  add_check(quantity, reference, st.mean, c, std::nullopt, note);  // the row, judged on the mean
+  nlohmann::json& row = checks.back();
+  const std::optional<double> lo = st.low(), hi = st.high();
+  bool ok = lo && hi && reference && interval_passes(c, *reference, *lo, *hi);  // fewer than two values: no verdict
+  if (!row["passed"].get<bool>() && ok) ok = false;  // the mean alone already fails
+  row["passed"] = ok;
+  row["ci_low"] = lo ? nlohmann::json(*lo) : nlohmann::json(nullptr);
+  row["ci_high"] = hi ? nlohmann::json(*hi) : nlohmann::json(nullptr);
+  row["members"] = st.n;
+  // add_check folded the mean's verdict into `passed`; fold the interval's as well
+  if (!ok) passed = false;
+}
+
+bool interval_passes(const Check& c, double reference, double lo, double hi) {
+  const double margin = c.relative ? c.tolerance * std::abs(reference) : c.tolerance;
+  if (c.expect == Expect::within) return lo >= reference - margin && hi <= reference + margin;
+  if (c.expect == Expect::above) return lo > reference + margin;
+  return hi < reference - margin;
 }
 
 std::string check_label(const Check& c, const Variant& v) {

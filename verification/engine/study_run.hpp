@@ -48,7 +48,9 @@ struct StudyRun {
   nlohmann::json tables = nlohmann::json::array(), setup_extra = nlohmann::json::object();
   nlohmann::json mode_chart;          // mode_map: the coloured chart (the first figure)
   bool passed = true;
-  std::vector<RunOut> finest_runs;    // the finest run of each variant (stability: probe "limit")
+  std::vector<RunOut> finest_runs;    // the finest run of each variant (stability: probe "limit"); of an
+                                      // ensemble: the members' means
+  std::vector<std::map<std::string, EnsembleStat>> ensemble_stats;  // per variant and probe (ensembles only)
   double speed_sum = 0.0;
   std::size_t speed_n = 0;
 
@@ -68,7 +70,15 @@ struct StudyRun {
   /// Appends a check row to result.json's checks (and folds its verdict into `passed`).
   void add_check(const std::string& quantity, std::optional<double> reference, std::optional<double> dem,
                  const Check& c, std::optional<double> order, const std::string& note);
+  /// The same for the mean of an ensemble: it passes only if the whole confidence interval of the mean
+  /// satisfies the check (within: inside reference ± tolerance; above / below: beyond the margin).
+  void add_ensemble_check(const std::string& quantity, std::optional<double> reference, const EnsembleStat& st,
+                          const Check& c, const std::string& note);
 };
+
+/// The verdict of a check on an ensemble's interval [lo, hi] of the mean: within — inside reference ±
+/// tolerance; above / below — beyond reference ± the margin (relative: tolerance × |reference|).
+bool interval_passes(const Check& c, double reference, double lo, double hi);
 
 /// "label, variant" (the label alone for the unnamed variant).
 std::string check_label(const Check& c, const Variant& v);
@@ -80,6 +90,11 @@ double evaluate_solver(const std::string& solver, const std::map<std::string, do
 [[noreturn]] void fail(const Study& s, const std::string& key, const std::string& what);
 
 void run_levels(StudyRun& run);      // kind single or refinement (study_levels.cpp)
+/// An ensemble study's plan: each planned run once per member (member 1 keeps the run folder that
+/// feeds the figures); and the members' runs folded into one per variant (means; run.ensemble_stats),
+/// with members.csv and a table of every checked probe's interval (study_ensemble_run.cpp).
+std::vector<Planned> member_plan(const StudyRun& run, const std::vector<Planned>& per_variant);
+std::vector<RunOut> fold_members(StudyRun& run, const std::vector<RunOut>& runs);
 void run_mode_map(StudyRun& run);    // study_mode_map.cpp
 void run_stability(StudyRun& run);   // study_stability.cpp
 /// The declared figures (after the mode map's chart) and tables (appended to run.tables).

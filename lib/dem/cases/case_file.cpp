@@ -366,7 +366,24 @@ struct Reader {
         r.fail("s", e.what());
       }
       room_for(r, "s", a.count);
-      for (const Vec2 p : ordered_positions(a, left, floor, ec.radius, gap)) place(ec, p, 0.0, -1);
+      // jitter: each centre moved by a uniform random amount in [−jitter, jitter] in x and in y (splitmix64
+      // from `seed`), e.g. the members of an ensemble of fills that differ only in the last digits (a
+      // discharge is chaotic); two centres then move apart by at most 2√2 jitter, which must not close a gap
+      const double jitter = r.quantity("jitter", dims::length, 0.0);
+      non_negative(r, "jitter", jitter);
+      if (r.has("seed") && jitter == 0.0) r.fail("seed", "has no effect without a jitter > 0");
+      const auto seed = static_cast<std::uint64_t>(r.integer("seed", 0, std::numeric_limits<std::int64_t>::max(), 0));
+      if (2.0 * std::numbers::sqrt2 * jitter > a.min_gap)
+        r.fail("jitter", fmt::format("at most {:.6g} m here (2√2 jitter must not exceed the smallest gap, {:.6g} m)",
+                                     a.min_gap / (2.0 * std::numbers::sqrt2), a.min_gap));
+      SplitMix64 rng(seed);
+      for (Vec2 p : ordered_positions(a, left, floor, ec.radius, gap)) {
+        if (jitter > 0.0) {
+          p.x += jitter * (2.0 * rng.uniform() - 1.0);
+          p.y += jitter * (2.0 * rng.uniform() - 1.0);
+        }
+        place(ec, p, 0.0, -1);
+      }
       return;
     }
     const auto base = common(r, false);
@@ -514,6 +531,7 @@ ProbeKind probe_kind(const std::string& s) {
   if (s == "crossing") return ProbeKind::crossing;
   if (s == "slope") return ProbeKind::slope;
   if (s == "restitution") return ProbeKind::restitution;
+  if (s == "ratio") return ProbeKind::ratio;
   return ProbeKind::contact_duration;
 }
 
@@ -874,9 +892,17 @@ void Reader::read_probes(const TableReader& top) {
     ProbeSpec p;
     p.name = r.string("name");
     p.kind = probe_kind(r.choice("kind", {"value", "max", "min", "mean", "time_of_max", "time_of_min", "crossing", "slope",
-                                          "restitution", "contact_duration"}, "value"));
+                                          "restitution", "contact_duration", "ratio"}, "value"));
     p.location = where(*r.node("name"), file);
-    if (p.kind != ProbeKind::restitution && p.kind != ProbeKind::contact_duration) {
+    if (p.kind == ProbeKind::ratio) {  // of / over: probes declared before this one, not ratios themselves
+      for (const char* key : {"of", "over"}) {
+        const std::string name = r.string(key);
+        const auto it = std::find_if(c.probes.begin(), c.probes.end(), [&](const ProbeSpec& q) { return q.name == name; });
+        if (it == c.probes.end()) r.fail(key, fmt::format("no probe \"{}\" is declared before this one", name));
+        if (it->kind == ProbeKind::ratio) r.fail(key, fmt::format("\"{}\" is a ratio itself (take the ratio of its parts)", name));
+        (key[1] == 'f' ? p.of : p.over) = name;
+      }
+    } else if (p.kind != ProbeKind::restitution && p.kind != ProbeKind::contact_duration) {
       p.quantity = r.string("quantity");
       p.location = where(*r.node("quantity"), file);
       if (p.kind == ProbeKind::value) {

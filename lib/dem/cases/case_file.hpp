@@ -21,7 +21,7 @@ class CaseError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class ProbeKind { value, max, min, mean, time_of_max, time_of_min, crossing, slope, restitution, contact_duration };
+enum class ProbeKind { value, max, min, mean, time_of_max, time_of_min, crossing, slope, restitution, contact_duration, ratio };
 
 /// A quantity of interest computed during a run (written to summary.json under "probes").
 struct ProbeSpec {
@@ -35,6 +35,8 @@ struct ProbeSpec {
   double level = 0.0;            // crossing: the level [SI units of the quantity]
   int direction = 0;             // crossing: +1 upwards, −1 downwards, 0 either
   std::string against;           // slope: dq/dx against this quantity instead of t (e.g. a stiffness)
+  std::string of, over;          // ratio: probe `of` / probe `over` (two probes declared before it), e.g. a
+                                 // dynamic wall force over the static one (a silo's overpressure)
   std::uint32_t element = 0;     // restitution / contact_duration: element i
   std::uint32_t other = 0;       //   and element j or wall j
   bool other_is_wall = false;

@@ -136,6 +136,7 @@ Simulation::BandForce Simulation::wall_band_force(std::uint32_t w, double s0, do
     const double s = len > 0.0 ? dot(point - wall.a, along) : 0.0;
     if (s < s0 || s >= s1) return;
     out.normal += fn;                                                   // compression positive
+    out.max_normal = std::max(out.max_normal, fn);
     out.tangential += dot(n * fn + t * fs, along);                      // force on the wall along a→b
     ++out.contacts;
   };

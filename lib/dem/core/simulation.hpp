@@ -106,9 +106,10 @@ class Simulation {
   /// The force the elements exert on wall w through the contacts whose contact point (the wall's point
   /// closest to the element's centre) lies in the band s0 <= s < s1 along the wall (s: distance from the
   /// wall's first end point a along a→b, in [0, |ab|]; 0 for a point wall): the normal part (compression
-  /// positive) and the part of the force on the wall along a→b [N]. No allocation.
+  /// positive) and the part of the force on the wall along a→b [N], and the largest normal force of a
+  /// single contact in the band (0 if none: a silo's per-contact overpressure). No allocation.
   struct BandForce {
-    double normal = 0.0, tangential = 0.0;
+    double normal = 0.0, tangential = 0.0, max_normal = 0.0;
     std::size_t contacts = 0;
   };
   BandForce wall_band_force(std::uint32_t w, double s0, double s1) const;

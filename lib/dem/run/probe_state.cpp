@@ -137,7 +137,7 @@ std::vector<ProbeState> start_probes(const Case& c, const Simulation& sim) {
     if (!p.quantity.empty()) {
       s.q = compile_quantity(p.quantity, m);
       s.prev_v = s.q(sim);
-    } else {
+    } else if (p.kind != ProbeKind::ratio) {  // a ratio has nothing to sample (ratio_results)
       s.n_prev = contact_normal(sim, p.element, p.other, p.other_is_wall);  // ids (the case's numbering)
       s.vn_prev = approach_velocity(sim, p.element, p.other, p.other_is_wall, s.n_prev);
     }
@@ -175,6 +175,8 @@ void sample_probe(ProbeState& p, const Simulation& sim) {
     case ProbeKind::contact_duration:
       sample_contact(p, sim);
       break;
+    case ProbeKind::ratio:
+      break;
   }
 }
 
@@ -209,9 +211,22 @@ std::optional<double> probe_result(const ProbeState& p, const Simulation& sim) {
     case ProbeKind::contact_duration:
       if (!p.in_contact && p.force_steps > 0) v = static_cast<double>(p.force_steps) * sim.model().numerics.dt;
       break;
+    case ProbeKind::ratio:  // from the other probes' results (ratio_results)
+      break;
   }
   if (v && !std::isfinite(*v)) v.reset();
   return v;
+}
+
+void ratio_results(const std::vector<ProbeState>& probes, std::map<std::string, std::optional<double>>& results) {
+  for (const auto& p : probes)
+    if (p.spec->kind == ProbeKind::ratio) {
+      const auto& a = results.at(p.spec->of);
+      const auto& b = results.at(p.spec->over);
+      std::optional<double> v;
+      if (a && b && *b != 0.0 && std::isfinite(*a / *b)) v = *a / *b;
+      results[p.spec->name] = v;
+    }
 }
 
 }  // namespace dem

@@ -3,6 +3,8 @@
 // (value, max, min, mean, time_of_*, crossing, slope, restitution, contact_duration; case_file.hpp
 // ProbeSpec says what each measures). The accumulators are saved in checkpoints (loop_state.hpp).
 #include <cstdint>
+#include <map>
+#include <string>
 #include <optional>
 #include <vector>
 
@@ -41,7 +43,12 @@ std::vector<ProbeState> start_probes(const Case& c, const Simulation& sim);
 /// Samples a probe after a step.
 void sample_probe(ProbeState& p, const Simulation& sim);
 
-/// A probe's value at the end of the run; none when it has none (or it is not a finite number).
+/// A probe's value at the end of the run; none when it has none (or it is not a finite number), and for
+/// a ratio (ratio_results).
 std::optional<double> probe_result(const ProbeState& p, const Simulation& sim);
+
+/// The ratio probes' values from the other probes' results (none if either part has none, the
+/// denominator is 0 or the quotient is not finite).
+void ratio_results(const std::vector<ProbeState>& probes, std::map<std::string, std::optional<double>>& results);
 
 }  // namespace dem

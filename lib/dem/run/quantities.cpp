@@ -118,6 +118,55 @@ QuantityFn element_quantity(const std::string& name, std::size_t u, const std::v
   throw bad("expected e<i>.<field> or e<i>.gap|fn|fs.<other>");
 }
 
+/// Parses "f(a,b,...)"'s comma-separated numbers (exactly `count` of them); throws std::invalid_argument.
+std::vector<double> call_numbers(const std::string& name, std::size_t open, std::size_t count) {
+  if (name.back() != ')') throw std::invalid_argument(name);
+  const auto parts = split(name.substr(open, name.size() - open - 1), ',');
+  if (parts.size() != count) throw std::invalid_argument(name);
+  std::vector<double> out;
+  for (const auto& a : parts) {
+    std::size_t used = 0;
+    out.push_back(std::stod(a, &used));
+    if (used != a.size() || !std::isfinite(out.back())) throw std::invalid_argument(a);
+  }
+  return out;
+}
+
+/// moved.fraction(x0,x1,y0,y1,d): of the free elements whose centre lay in the box [x0,x1] × [y0,y1] [m]
+/// in the case's initial state (the model the quantity is compiled against: the case as generated, also
+/// for a restart), the fraction that now lie farther than d [m] from that position or have left the run
+/// (discharged). A silo's flow pattern: which parts of the fill take part in the flow (K Fig. 8, 9).
+QuantityFn moved_fraction(const std::string& name, const Model& m) {
+  std::vector<double> a;
+  try {
+    a = call_numbers(name, std::string("moved.fraction(").size(), 5);
+  } catch (const std::exception&) {
+    throw bad_quantity(name, "expected moved.fraction(x0,x1,y0,y1,d) with finite numbers in metres");
+  }
+  if (!(a[0] < a[1] && a[2] < a[3] && a[4] > 0.0))
+    throw bad_quantity(name, "expected x0 < x1, y0 < y1 and d > 0 in moved.fraction(x0,x1,y0,y1,d)");
+  const Elements& e = m.elements;
+  std::vector<std::uint32_t> ids;
+  std::vector<Vec2> start;
+  for (std::size_t i = 0; i < e.size(); ++i)
+    if (e.active[i] && e.motion[i] == Motion::free && e.x[i] >= a[0] && e.x[i] <= a[1] && e.y[i] >= a[2] && e.y[i] <= a[3]) {
+      ids.push_back(e.id[i]);
+      start.push_back({e.x[i], e.y[i]});
+    }
+  if (ids.empty()) throw bad_quantity(name, "no free element lies in the box at the start");
+  const double d2 = a[4] * a[4];
+  return [ids = std::move(ids), start = std::move(start), d2](const Simulation& s) {
+    const Elements& now = s.model().elements;
+    std::size_t moved = 0;
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      const std::size_t i = s.index_of(ids[k]);
+      const double dx = now.x[i] - start[k].x, dy = now.y[i] - start[k].y;
+      moved += (!now.active[i] || dx * dx + dy * dy > d2) ? 1 : 0;
+    }
+    return static_cast<double>(moved) / static_cast<double>(ids.size());
+  };
+}
+
 }  // namespace
 
 double mean_increment(const Simulation& s) {
@@ -189,13 +238,14 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
     }
     return corner_slide(static_cast<std::size_t>(i), alpha_deg * std::numbers::pi / 180.0, m);
   }
-  // <wall>.fn(s0,s1), <wall>.fs(s0,s1): the wall's contacts in a band along it (s in metres from its
-  // first end point); read before splitting on '.', so that the bounds may have decimals
-  for (const char* field : {".fn(", ".fs("})
+  // <wall>.fn(s0,s1), <wall>.fs(s0,s1), <wall>.fn_max(s0,s1): the wall's contacts in a band along it (s in
+  // metres from its first end point); read before splitting on '.', so that the bounds may have decimals
+  for (const char* field : {".fn(", ".fs(", ".fn_max("})
     if (const auto at = name.find(field); at != std::string::npos && at > 0 && name.back() == ')') {
       const long w = wall_ref(name.substr(0, at), m);
       if (w < 0) break;  // e<i>.fn(...) is not a band: handled (and refused) below
-      const std::string args = name.substr(at + 4, name.size() - at - 5);
+      const std::size_t open = at + std::string(field).size();
+      const std::string args = name.substr(open, name.size() - open - 1);
       const auto comma = args.find(',');
       double s0 = 0.0, s1 = 0.0;
       try {
@@ -206,14 +256,16 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
         s1 = std::stod(b, &u1);
         if (u0 != a.size() || u1 != b.size()) throw std::invalid_argument(args);
       } catch (const std::exception&) {
-        throw bad("expected <wall>.fn(s0,s1) or <wall>.fs(s0,s1) with s0 < s1 in metres along the wall");
+        throw bad("expected <wall>.fn(s0,s1), <wall>.fs(s0,s1) or <wall>.fn_max(s0,s1) with s0 < s1 in metres along the wall");
       }
-      if (!(s0 < s1)) throw bad("expected s0 < s1 in <wall>.fn(s0,s1) / <wall>.fs(s0,s1)");
+      if (!(s0 < s1)) throw bad("expected s0 < s1 in <wall>.fn(s0,s1) / fs(s0,s1) / fn_max(s0,s1)");
       const auto k = static_cast<std::uint32_t>(w);
+      if (field[3] == '_') return [k, s0, s1](const Simulation& s) { return s.wall_band_force(k, s0, s1).max_normal; };
       if (field[2] == 'n')
         return [k, s0, s1](const Simulation& s) { return s.wall_band_force(k, s0, s1).normal; };
       return [k, s0, s1](const Simulation& s) { return s.wall_band_force(k, s0, s1).tangential; };
     }
+  if (name.rfind("moved.fraction(", 0) == 0) return moved_fraction(name, m);
   // walls.fx, walls.fy: the force of the elements on all walls together (a settled silo: the weight)
   if (name == "walls.fx" || name == "walls.fy") {
     const bool x = name.back() == 'x';
@@ -268,6 +320,7 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
 std::string quantity_unit(const std::string& name) {
   if (name == "t") return "s";
   if (name == "step" || name == "contacts" || name == "unbalanced_force_ratio") return "1";
+  if (name.rfind("moved.fraction(", 0) == 0) return "1";
   if (name == "discharged.count" || name == "active.count") return "1";
   if (name == "discharged.mass" || name == "active.mass") return "kg";
   if (name.rfind("energy.", 0) == 0) return "J";
@@ -275,7 +328,8 @@ std::string quantity_unit(const std::string& name) {
   const auto p = split(name, '.');
   if (p.size() >= 2 && p[1].rfind("corner_slide(", 0) == 0) return "m";
   if (const auto dot = name.find('.'); dot != std::string::npos &&
-      (name.compare(dot + 1, 3, "fn(") == 0 || name.compare(dot + 1, 3, "fs(") == 0))
+      (name.compare(dot + 1, 3, "fn(") == 0 || name.compare(dot + 1, 3, "fs(") == 0 ||
+       name.compare(dot + 1, 7, "fn_max(") == 0))
     return "N";  // <wall>.fn(s0,s1), <wall>.fs(s0,s1): a band's force (the bounds may hold dots)
   if (p.size() == 3) {  // e<i>.gap|fn|fs|links.<other>
     if (p[1] == "gap") return "m";

@@ -39,6 +39,7 @@ const char* name_of(ProbeKind k) {
     case ProbeKind::slope: return "slope";
     case ProbeKind::restitution: return "restitution";
     case ProbeKind::contact_duration: return "contact_duration";
+    case ProbeKind::ratio: return "ratio";
   }
   return "?";
 }
@@ -99,6 +100,7 @@ std::string probe_unit(const ProbeSpec& p) {
     case ProbeKind::contact_duration:
       return "s";
     case ProbeKind::restitution:
+    case ProbeKind::ratio:
       return "1";
     case ProbeKind::slope: {
       const std::string q = quantity_unit(p.quantity), x = p.against.empty() ? "s" : quantity_unit(p.against);
@@ -194,7 +196,10 @@ nlohmann::json resolved_case_si(const Case& c) {
     nlohmann::json pj = {{"name", p.name}, {"kind", name_of(p.kind)}, {"unit", probe_unit(p)}};
     if (!p.quantity.empty()) pj["quantity"] = p.quantity;
     if (p.kind == ProbeKind::value) pj["at"] = p.at ? nlohmann::json(*p.at) : nlohmann::json("end");
-    if (p.kind == ProbeKind::restitution || p.kind == ProbeKind::contact_duration) {
+    if (p.kind == ProbeKind::ratio) {
+      pj["of"] = p.of;
+      pj["over"] = p.over;
+    } else if (p.kind == ProbeKind::restitution || p.kind == ProbeKind::contact_duration) {
       pj["element"] = p.element;
       pj[p.other_is_wall ? "wall" : "other"] = p.other_is_wall ? nlohmann::json(m.walls[p.other].name) : nlohmann::json(p.other);
     } else if (p.kind != ProbeKind::value) {

@@ -456,6 +456,7 @@ RunResult run_case(Case c, const RunOptions& opt) {
   res.element_steps_per_second =
       res.wall_seconds > 0 ? static_cast<double>(n_active) * static_cast<double>(res.steps) / res.wall_seconds : 0.0;
   for (const auto& p : probes) res.probes[p.spec->name] = probe_result(p, sim);
+  ratio_results(probes, res.probes);
 
   res.summary = run_summary(c, sim, res, resolved_si, n_active);
   if (m.discharge.enabled) res.summary["discharge"] = discharge_summary(sim, loop, n_active);
