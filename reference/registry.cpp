@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <iterator>
+#include <numbers>
 #include <stdexcept>
 
 #include "ref/base_friction.hpp"
@@ -19,6 +20,7 @@
 #include "ref/require.hpp"
 #include "ref/resting_overlap.hpp"
 #include "ref/silo.hpp"
+#include "ref/silo_fill.hpp"
 #include "ref/spring_layer.hpp"
 #include "ref/stability.hpp"
 
@@ -368,6 +370,43 @@ std::vector<Entry> silo_and_beam_entries() {
   };
 }
 
+/// The ordered fill of the arguments s, B, r and count (ref/silo_fill.hpp).
+OrderedFill fill_of(const Args& a) { return ordered_fill(a.count("s"), a("B"), a("r"), a.count("count")); }
+
+/// Kiyama's ordered fills as built and Janssen per wall contact (refs §6.1, ref/silo_fill.hpp).
+std::vector<Entry> silo_fill_entries() {
+  const SolverArgument s{"s", "1", "disks in a full row"}, width{"B", "m", "silo width"}, radius{"r", "m", "disk radius"},
+      count{"count", "1", "target disk count (the row count whose count is nearest)"},
+      rho{"rho", "kg/m^3", "solid density of the disks"}, g{"g", "m/s^2", "gravity"}, mu_w{"mu_w", "1", "wall friction coefficient"};
+  return {
+    {{"silo.fill_height", "2r + (rows - 1) d_y of the (s-1)/s fill nearest `count` disks, no gaps (refs §6.1)",
+      {s, width, radius, count}, "m"},
+     [](const Args& a) { return ordered_fill(a.count("s"), a("B"), a("r"), a.count("count")).height; }},
+    {{"silo.area_fraction", "phi_A = (2s - 1) pi r^2 / (2 B d_y) of the (s-1)/s packing (refs §6.1)", {s, width, radius}, "1"},
+     [](const Args& a) { return ordered_packing(a.count("s"), a("B"), a("r")).area_fraction; }},
+    {{"silo.fill_weight", "weight per unit thickness n rho pi r^2 g of the (s-1)/s fill nearest `count` disks",
+      {s, width, radius, count, rho, g}, "N/m"},
+     [](const Args& a) {
+       const OrderedFill f = fill_of(a);
+       return static_cast<double>(f.count) * a("rho") * std::numbers::pi * a("r") * a("r") * a("g");
+     }},
+    {{"silo.janssen_contact_force",
+      "Janssen sigma_h(z) x 2 d_y x 1 m: the force on one wall contact at depth z below the top of the (s-1)/s fill, "
+      "K = K_geom, rho_b = rho phi_A, full wall friction (refs §6.1)",
+      {{"z", "m", "depth below the fill top"}, s, width, radius, count, rho, g, mu_w}, "N/m"},
+     [](const Args& a) { return janssen_contact_force(a("z"), fill_of(a), a("rho"), a("g"), a("mu_w")); }},
+    {{"silo.janssen_wall_contact",
+      "Janssen's wall force on the band carried by the k-th wall contact from the bottom (y_k +- d_y, cut at "
+      "floor and top) of the (s-1)/s fill, K = K_geom, rho_b = rho phi_A (refs §6.1)",
+      {{"k", "1", "wall contact from the bottom, 0 = the bottom row"}, s, width, radius, count, rho, g, mu_w}, "N/m"},
+     [](const Args& a) {
+       const double k = a("k");
+       if (!(k >= 0.0 && k == std::floor(k) && k < 1e6)) detail::fail("ref::evaluate", "k must be a whole number >= 0", k);
+       return janssen_wall_contact(static_cast<int>(k), fill_of(a), a("rho"), a("g"), a("mu_w"));
+     }},
+  };
+}
+
 /// The solvers of the PRE-face base-friction model and the exact linear lattice beam (refs §3, §4).
 std::vector<Entry> exact_entries() {
   return {
@@ -409,7 +448,7 @@ std::vector<Entry> exact_entries() {
 const std::vector<Entry>& table() {
   static const std::vector<Entry> entries = [] {
     std::vector<Entry> all;
-    for (auto make : {contact_entries, block_entries, silo_and_beam_entries, exact_entries}) {
+    for (auto make : {contact_entries, block_entries, silo_and_beam_entries, silo_fill_entries, exact_entries}) {
       std::vector<Entry> group = make();
       all.insert(all.end(), std::make_move_iterator(group.begin()), std::make_move_iterator(group.end()));
     }

@@ -8,6 +8,7 @@
 #include "dem/cases/text.hpp"
 #include "dem/run/quantities.hpp"
 #include "engine/study_run.hpp"
+#include "engine/study_wall_profile.hpp"
 #include "ref/registry.hpp"
 
 // The figures and tables a study file declares ([[figure]], [[table]]), drawn from the finest run of
@@ -187,7 +188,9 @@ nlohmann::json draw_figures(const StudyRun& run) {
   nlohmann::json figures = nlohmann::json::array();
   if (!run.mode_chart.is_null()) figures.push_back(run.mode_chart);
   for (const Figure& f : s.figures) {
-    const nlohmann::json curves = f.probe.empty() ? series_curves(run, f) : probe_curves(run, f);
+    const nlohmann::json curves = !f.walls.empty()   ? wall_profile_curves(run, f)
+                                  : f.probe.empty() ? series_curves(run, f)
+                                                    : probe_curves(run, f);
     nlohmann::json fig = {{"id", f.id}, {"title", f.title}, {"xlabel", f.xlabel}, {"ylabel", f.ylabel},
                           {"logx", f.logx}, {"logy", f.logy}, {"curves", curves}};
     if (!f.x_range.empty()) fig["xrange"] = f.x_range;

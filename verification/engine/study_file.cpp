@@ -12,6 +12,7 @@
 #include "dem/cases/case_reader.hpp"
 #include "dem/cases/units.hpp"
 #include "dem/run/resolved_case.hpp"
+#include "engine/study_wall_profile.hpp"
 #include "ref/registry.hpp"
 
 namespace fs = std::filesystem;
@@ -240,7 +241,8 @@ Figure read_figure(const Study& s, const TableReader& r, const toml::node& n) {
   f.x = r.string("x", "t");
   f.y = r.string("y", "");
   f.probe = r.string("probe", "");
-  if (f.y.empty() && f.probe.empty()) r.fail_at(n, "y", "missing: the series quantity to plot (or probe = a probe across variants)");
+  f.walls = r.strings("walls");  // a wall-contact profile (study_wall_profile.hpp)
+  if (f.y.empty() && f.probe.empty() && f.walls.empty()) r.fail_at(n, "y", "missing: the series quantity to plot (or probe = a probe across variants)");
   if (!f.y.empty() && !f.probe.empty()) r.fail("probe", "give y (a series quantity over time) or probe (a probe across variants), not both");
   f.xlabel = r.string("xlabel", f.x);
   f.ylabel = r.string("ylabel", f.y);
@@ -296,6 +298,8 @@ Figure read_figure(const Study& s, const TableReader& r, const toml::node& n) {
       if (!word) r.fail_at(v, "labels." + std::string(k.str()), "expected a string (the legend's words)");
       f.curve_labels[std::string(k.str())] = *word;
     }
+  if (!f.walls.empty()) read_wall_profile(f, s, r, n);
+  else if (r.node("component")) r.fail("component", "needs walls = [...] (a wall-contact profile)");
   return f;
 }
 

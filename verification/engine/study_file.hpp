@@ -73,6 +73,10 @@ struct Figure {
   bool reference_per_variant = false;  // series figure: one reference curve per variant (its own args)
   std::map<std::string, std::string> curve_labels;  // legend words per series quantity / solver
   std::vector<std::string> solvers;  // time-series figure: every reference solver (solver = the first)
+  // A wall-contact profile (study_wall_profile.hpp): every contact of these walls at the end of each
+  // variant's run against its depth; component "fn", "fs" or "mobilisation" (|fs| / (mu_w fn)).
+  std::vector<std::string> walls;
+  std::string component;
 };
 
 /// A table of probe values across variants: rows = variants (columns = the probes), or a pivot with

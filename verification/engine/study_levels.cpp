@@ -54,14 +54,25 @@ std::vector<Planned> plan_levels(const StudyRun& run, std::size_t nl) {
     if (s.kind == Kind::refinement) sets.insert(sets.end(), levels[k % nl].set.begin(), levels[k % nl].set.end());
     fs::path run_dir;
     if (k % nl == nl - 1) {  // the finest level feeds the figures
-      std::vector<std::string> q;
+      std::vector<std::string> q, walls;
       std::int64_t every = 0;
       for (const Figure& f : s.figures)
         if (f.probe.empty() && (f.variants.empty() || std::find(f.variants.begin(), f.variants.end(), v.label) != f.variants.end())) {
-          q.push_back(f.x);
-          q.push_back(f.y);
+          if (!f.walls.empty()) {  // a wall-contact profile: wall_contacts.csv at the end (and the time, every f.every)
+            for (const auto& w : f.walls)
+              if (std::find(walls.begin(), walls.end(), w) == walls.end()) walls.push_back(w);
+            q.push_back("t");
+          } else {
+            q.push_back(f.x);
+            q.push_back(f.y);
+          }
           every = every ? std::min(every, f.every) : f.every;
         }
+      if (!walls.empty()) {
+        std::string list;
+        for (const auto& name : walls) list += (list.empty() ? "" : ", ") + fmt::format("\"{}\"", name);
+        sets.push_back(fmt::format("output.wall_contacts=[{}]", list));
+      }
       if (!q.empty()) {
         run_dir = run.out / "runs" / fmt::format("variant{}", k / nl);
         std::string list;

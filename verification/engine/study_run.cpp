@@ -28,7 +28,10 @@ std::vector<RunOut> StudyRun::run_many(const std::vector<Planned>& plan, int job
     if (!cache_dir.empty()) {
       entry = cache_entry(cache_dir, c.resolved, plan[k].sets, plan[k].out);
       const fs::path& run_out = plan[k].out;
-      const bool files_ok = run_out.empty() || (fs::exists(run_out / "series.csv") && fs::exists(run_out / "summary.json"));
+      const bool wall_contacts = std::any_of(plan[k].sets.begin(), plan[k].sets.end(),
+                                             [](const std::string& x) { return x.rfind("output.wall_contacts=", 0) == 0; });
+      const bool files_ok = run_out.empty() || (fs::exists(run_out / "series.csv") && fs::exists(run_out / "summary.json") &&
+                                                (!wall_contacts || fs::exists(run_out / "wall_contacts.csv")));
       if (files_ok)
         if (const auto cached = read_cached(entry)) {
           ++reused;

@@ -825,6 +825,17 @@ void Reader::read_output(const TableReader& top) {
         o.picture_times.push_back(t);
       }
     }
+    o.wall_contacts = r.strings("wall_contacts");
+    for (const std::string& name : o.wall_contacts) {
+      const auto it = wall_index.find(name);
+      if (it == wall_index.end())
+        r.fail("wall_contacts", fmt::format("unknown wall \"{}\" (expected names of [[wall]] tables)", name));
+      if (m.walls[static_cast<std::size_t>(it->second)].kind != WallKind::segment)
+        r.fail("wall_contacts", fmt::format("wall \"{}\" is a point wall: a contact profile needs a segment", name));
+      if (std::count(o.wall_contacts.begin(), o.wall_contacts.end(), name) > 1)
+        r.fail("wall_contacts", fmt::format("wall \"{}\" is named twice", name));
+      o.wall_contact_walls.push_back(static_cast<std::uint32_t>(it->second));
+    }
     o.picture_width = r.integer("picture_width", 64, 8000, 800);
     o.picture_max_force = r.optional_quantity("picture_max_force", dims::force);
     if (o.picture_max_force) positive(r, "picture_max_force", *o.picture_max_force);

@@ -57,6 +57,10 @@ struct OutputSpec {
   std::int64_t picture_width = 800;     // [px]
   std::optional<double> picture_max_force;  // [N] drawn at the largest line width; none: each picture's largest
   bool any_pictures() const { return pictures || picture_every > 0.0 || !picture_times.empty(); }
+  // wall_contacts.csv at the end of the run: every contact of these walls, one row each (a silo's
+  // wall-force profile per contact, run/wall_contacts_csv.hpp); indices into Model::walls
+  std::vector<std::string> wall_contacts;
+  std::vector<std::uint32_t> wall_contact_walls;
 };
 
 /// When a run counts as settled (run.cpp): every criterion given must hold at every step of a window

@@ -113,6 +113,15 @@ class Simulation {
     std::size_t contacts = 0;
   };
   BandForce wall_band_force(std::uint32_t w, double s0, double s1) const;
+  /// Every contact of wall w, one by one, as wall_band_force sums them (wall_contact_forces.cpp): where
+  /// it touches (s along a→b and the point), the normal part and the part of the force on the wall along
+  /// a→b [N]; in the order of the contact slots.
+  struct WallContactForce {
+    double s = 0.0;
+    Vec2 point{};
+    double normal = 0.0, tangential = 0.0;
+  };
+  std::vector<WallContactForce> wall_contact_forces(std::uint32_t w) const;
 
   /// The run's kinematic blow-up test, made inside the step by each thread over its elements: of the
   /// active elements whose increment of the last step exceeds numerics.max_step_fraction × radius, the one

@@ -1,4 +1,5 @@
 #include "dem/run/quantities.hpp"
+#include "dem/run/fill_quantities.hpp"
 
 #include "dem/cases/text.hpp"
 
@@ -211,6 +212,11 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
   if (name == "energy.elastic") return [](const Simulation& s) { return s.energies().elastic; };
   if (name == "energy.total") return [](const Simulation& s) { return s.energies().total(); };
   if (name == "mean_increment") return mean_increment;
+  try {  // active.top, active.area_fraction(x0,x1,y0,y1): fill_quantities.hpp
+    if (auto fill = compile_fill_quantity(name)) return *fill;
+  } catch (const std::invalid_argument& e) {
+    throw bad(e.what());
+  }
   // base plate (M21): travel δ_B = ∫|v_B| dt and displacement since the start; only with a base plate
   // (without one they would be a column of zeros)
   if ((name == "plate_travel" || name == "plate_dx" || name == "plate_dy") && !m.base_plate.enabled)
@@ -323,6 +329,8 @@ std::string quantity_unit(const std::string& name) {
   if (name.rfind("moved.fraction(", 0) == 0) return "1";
   if (name == "discharged.count" || name == "active.count") return "1";
   if (name == "discharged.mass" || name == "active.mass") return "kg";
+  if (name == "active.top") return "m";
+  if (name.rfind("active.area_fraction(", 0) == 0) return "1";
   if (name.rfind("energy.", 0) == 0) return "J";
   if (name == "mean_increment" || name == "plate_travel" || name == "plate_dx" || name == "plate_dy") return "m";
   const auto p = split(name, '.');

@@ -13,6 +13,8 @@
 //   walls.fx  walls.fy                 force of the elements on all walls together [N]
 //   discharged.count  discharged.mass  disks removed below a [discharge] outlet line, their mass [kg]
 //   active.count  active.mass          elements still in the run, their mass [kg]
+//   active.top                         highest point of the active elements, max(y + r) [m]
+//   active.area_fraction(x0,x1,y0,y1)  area fraction of the active disks in a strip (fill_quantities.hpp)
 //   <wall>.fn(s0,s1)  <wall>.fs(s0,s1) force of the contacts whose contact point lies in the band
 //                                      s0 <= s < s1 along the wall (s [m] from its `from` end towards
 //                                      `to`): normal part (compression positive) and tangential part

@@ -8,6 +8,7 @@
 #include "dem/cases/text.hpp"
 #include "dem/run/checkpoint.hpp"
 #include "dem/run/vtk_writer.hpp"
+#include "dem/run/wall_contacts_csv.hpp"
 
 namespace dem {
 
@@ -112,6 +113,7 @@ void RunOutputs::commit(const Simulation& sim, nlohmann::json& summary, bool che
   if (checkpoint_step_) summary["checkpoint"] = {{"file", "checkpoint.bin"}, {"step", *checkpoint_step_}};
   csv_.commit();
   if (c_.output.vtk) write_pvd(opt_.out_dir / "snapshots.pvd", snapshots_);
+  if (!c_.output.wall_contacts.empty()) write_file_atomic(opt_.out_dir / "wall_contacts.csv", wall_contacts_csv(sim, c_.output));
   write_file_atomic(opt_.out_dir / "summary.json", summary.dump(2) + "\n");
 }
 
