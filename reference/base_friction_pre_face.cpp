@@ -50,12 +50,16 @@ Block require_block(const char* where, double theta, double alpha, double width,
 
 // G in units of the side s (lengths / s, λ s); G = s³ · moment_in_sides.
 double moment_in_sides(double lambda_s, double theta, double alpha, const Block& block,
-                       WallTangentialLaw law) {
+                       WallTangentialLaw law, WallLever lever) {
   constexpr double r = 0.5;
   const double c = std::cos(theta), s = std::sin(theta);
   const double gx = -std::sin(alpha), gy = -std::cos(alpha);  // ĝ, the fall line
   // Points relative to c_0.
-  const double ax = -r, ay = -r;  // A: resultant point of (M12) in the wall frame
+  double ax = -r, ay = -r;  // A: resultant point of (M12) in the wall frame
+  if (lever == WallLever::rotated_corner) {
+    ax = -r * c + r * s;  // the rotated body corner R(θ)(-r, -r)
+    ay = -r * s - r * c;
+  }
   double ix, iy;                  // I: instantaneous centre
   if (law == WallTangentialLaw::linearised) {
     ix = -r * (c - s);  // (M15.2): disk-like rolling of c_0
@@ -82,19 +86,19 @@ double moment_in_sides(double lambda_s, double theta, double alpha, const Block&
 }  // namespace
 
 double pre_face_moment(double lambda, double theta, double alpha, double width, double height,
-                       int n_w, int n_h, WallTangentialLaw law) {
+                       int n_w, int n_h, WallTangentialLaw law, WallLever lever) {
   constexpr const char* where = "ref::pre_face_moment";
   detail::require_finite(where, "lambda", lambda);
   const Block block = require_block(where, theta, alpha, width, height, n_w, n_h);
   const double side = block.side;
-  return side * side * side * moment_in_sides(lambda * side, theta, alpha, block, law);
+  return side * side * side * moment_in_sides(lambda * side, theta, alpha, block, law, lever);
 }
 
 double pre_face_rate(double theta, double alpha, double width, double height, int n_w, int n_h,
-                     WallTangentialLaw law) {
+                     WallTangentialLaw law, WallLever lever) {
   constexpr const char* where = "ref::pre_face_rate";
   const Block block = require_block(where, theta, alpha, width, height, n_w, n_h);
-  const auto moment = [&](double lambda_s) { return moment_in_sides(lambda_s, theta, alpha, block, law); };
+  const auto moment = [&](double lambda_s) { return moment_in_sides(lambda_s, theta, alpha, block, law, lever); };
   if (moment(0.0) >= 0.0) return 0.0;  // the drag turns the block up-slope about A: no toppling
   double hi = 1.0 / block.n_h;         // λ_hi = 1/H in units of 1/s
   for (int k = 0; moment(hi) <= 0.0; ++k) {
@@ -105,11 +109,11 @@ double pre_face_rate(double theta, double alpha, double width, double height, in
 }
 
 double theta_at_travel_pre_face(double travel, double alpha, double width, double height, int n_w,
-                                int n_h, WallTangentialLaw law) {
-  pre_face_moment(0.0, 0.0, alpha, width, height, n_w, n_h, law);  // validates the arguments
+                                int n_h, WallTangentialLaw law, WallLever lever) {
+  pre_face_moment(0.0, 0.0, alpha, width, height, n_w, n_h, law, lever);  // validates the arguments
   return theta_at_travels(std::vector<double>{travel}, alpha,
                           [=](double psi) {
-                            return pre_face_rate(std::max(0.0, psi - alpha), alpha, width, height, n_w, n_h, law);
+                            return pre_face_rate(std::max(0.0, psi - alpha), alpha, width, height, n_w, n_h, law, lever);
                           })
       .front();
 }

@@ -8,6 +8,7 @@
 
 #include "ref/base_friction.hpp"
 #include "ref/base_friction_m21.hpp"
+#include "ref/base_friction_onset.hpp"
 #include "ref/base_friction_pre_face.hpp"
 #include "ref/base_friction_travel.hpp"
 #include "ref/beam.hpp"
@@ -75,6 +76,12 @@ const SolverArgument beam_face_ends{"ends", "1", "0: segment centres (M13.1), 1:
 const SolverArgument support_stiffness{"k_c", "N/m", "stiffness of each support contact (in series)"};
 
 }  // namespace argument
+
+// The arguments of the onset solvers (ref/base_friction_onset.hpp).
+std::vector<SolverArgument> onset_arguments() {
+  return {argument::slope, {"phi_w", "rad", "block-slope friction angle"}, argument::block_width,
+          argument::block_height, argument::elements_w, argument::elements_h};
+}
 
 // The M-D lattice beam of ref/lattice_beam.hpp from registry arguments (radius r = h/(2 n_h)).
 std::vector<SolverArgument> lattice_beam_arguments(bool strength) {
@@ -430,6 +437,34 @@ std::vector<Entry> exact_entries() {
        return theta_at_travel_pre_face(a("delta_B"), a("alpha"), a("W"), a("H"), a.count("n_w"),
                                        a.count("n_h"));
      }},
+    {{"base_friction.theta_pre_face_exact",
+      "rotation at plate travel delta_B of the rigid PRE block whose pivot spring uses the exact "
+      "tangential increment (M3.2: the real corner does not drift), levers in the wall frame (M12, M19)",
+      {argument::slope, argument::plate_travel, argument::block_width, argument::block_height,
+       argument::elements_w, argument::elements_h},
+      "rad"},
+     [](const Args& a) {
+       return theta_at_travel_pre_face(a("delta_B"), a("alpha"), a("W"), a("H"), a.count("n_w"),
+                                       a.count("n_h"), WallTangentialLaw::exact);
+     }},
+    {{"base_friction.onset_theta_m21",
+      "rotation at which the pivot of a rigid n_w x n_h block turning about its real corner under M21 "
+      "needs the slope's friction tan phi_w (refs §3.6, §3.8; ref/base_friction_onset.hpp)",
+      onset_arguments(), "rad"},
+     [](const Args& a) { return onset_rotation(a("alpha"), a("phi_w"), a("W"), a("H"), a.count("n_w"), a.count("n_h"), rigid_m21_pivot); }},
+    {{"base_friction.onset_travel_m21",
+      "plate travel at base_friction.onset_theta_m21 under the M21 rate (refs §3.8)",
+      onset_arguments(), "m"},
+     [](const Args& a) { return onset_travel(a("alpha"), a("phi_w"), a("W"), a("H"), a.count("n_w"), a.count("n_h"), rigid_m21_pivot); }},
+    {{"base_friction.onset_theta_pre_face",
+      "the same onset for the PRE model's own rigid block (pivot spring in the wall frame, M15.2 rolling; "
+      "pre_face_rate)",
+      onset_arguments(), "rad"},
+     [](const Args& a) { return onset_rotation(a("alpha"), a("phi_w"), a("W"), a("H"), a.count("n_w"), a.count("n_h"), pre_face_pivot); }},
+    {{"base_friction.onset_travel_pre_face",
+      "plate travel at base_friction.onset_theta_pre_face under the PRE model's rate",
+      onset_arguments(), "m"},
+     [](const Args& a) { return onset_travel(a("alpha"), a("phi_w"), a("W"), a("H"), a.count("n_w"), a.count("n_h"), pre_face_pivot); }},
     {{"beam.lattice_exact_stiffness",
       "P/delta at mid-span (bottom point left of x = 0) of the bonded square PRE lattice on disk supports "
       "under a load disk: the assembled linear stiffness matrix of the rigid elements, face springs "

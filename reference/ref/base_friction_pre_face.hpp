@@ -33,20 +33,29 @@ namespace ref {
 
 enum class WallTangentialLaw { linearised, exact };  // (M15.2) or (M3.2) at the pivot spring
 
+// Where the pivot spring's P and Q act: at the face end of the WALL frame, A = c_0 + (-r, -r) (M12 with
+// M19, what the model and lib/ do), or at the ROTATED body corner c_0 + R(θ)(-r, -r) (a face-end rule
+// that follows the corner; not in the paper). With WallTangentialLaw::exact and rotated_corner, I = A =
+// the real corner and the rate is the rigid block's M21 rate (ref/base_friction_m21.hpp) at psi = alpha + θ.
+enum class WallLever { wall_frame, rotated_corner };
+
 // G(λ; theta, alpha) (m³: each term times the element area s² and a length; same normalisation as
 // m21_moment), for lambda >= 0, theta in [0, pi/2], alpha in [0, pi/2). Requires W/n_w = H/n_h (square elements).
 double pre_face_moment(double lambda, double theta, double alpha, double width, double height,
-                       int n_w, int n_h, WallTangentialLaw law = WallTangentialLaw::linearised);
+                       int n_w, int n_h, WallTangentialLaw law = WallTangentialLaw::linearised,
+                       WallLever lever = WallLever::wall_frame);
 
 // dθ/dδ_B = λ (rad/m, >= 0): 0 when G(0) >= 0 (the base-friction resultant passes up-slope of A: no
 // toppling), else the root in (0, λ_hi], λ_hi = 2^k / H doubled until G(λ_hi) > 0, by GSL Brent to a
 // relative 1e-13. The unit tests check that the bracket holds one sign change.
 double pre_face_rate(double theta, double alpha, double width, double height, int n_w, int n_h,
-                     WallTangentialLaw law = WallTangentialLaw::linearised);
+                     WallTangentialLaw law = WallTangentialLaw::linearised,
+                     WallLever lever = WallLever::wall_frame);
 
 // θ (rad) at plate travel delta_B (m) under pre_face_rate, from θ(0) = 0 (Odeint dopri5, as
 // theta_at_travels of ref/base_friction_travel.hpp), capped at pi/2.
 double theta_at_travel_pre_face(double travel, double alpha, double width, double height, int n_w,
-                                int n_h, WallTangentialLaw law = WallTangentialLaw::linearised);
+                                int n_h, WallTangentialLaw law = WallTangentialLaw::linearised,
+                                WallLever lever = WallLever::wall_frame);
 
 }  // namespace ref

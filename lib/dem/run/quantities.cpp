@@ -86,7 +86,7 @@ QuantityFn element_quantity(const std::string& name, std::size_t u, const std::v
     }
     throw bad("unknown element field (x, y, phi, vx, vy, omega, fx, fy, moment, px(a,b), py(a,b), gap.<other>, fn.<other>, fs.<other>)");
   }
-  if (p.size() == 3 && (p[1] == "gap" || p[1] == "fn" || p[1] == "fs" || p[1] == "links")) {
+  if (p.size() == 3 && (p[1] == "gap" || p[1] == "fn" || p[1] == "fs" || p[1] == "links" || p[1] == "mobilised")) {
     long j = -1;
     try {
       j = element_ref(p[2], m);
@@ -110,13 +110,18 @@ QuantityFn element_quantity(const std::string& name, std::size_t u, const std::v
       return [u, o, wall](const Simulation& s) {
         return static_cast<double>(s.contact(s.index_of(static_cast<std::uint32_t>(u)), wall ? o : s.index_of(o), wall).links);
       };
+    if (p[1] == "mobilised")  // |Q| / P: the friction the contact uses; tan φ at the Coulomb limit (M11)
+      return [u, o, wall](const Simulation& s) {
+        const ContactView c = s.contact(s.index_of(static_cast<std::uint32_t>(u)), wall ? o : s.index_of(o), wall);
+        return c.fn > 0.0 ? std::abs(c.fs) / c.fn : 0.0;
+      };
     const bool normal = p[1] == "fn";
     return [u, o, wall, normal](const Simulation& s) {
       const ContactView c = s.contact(s.index_of(static_cast<std::uint32_t>(u)), wall ? o : s.index_of(o), wall);
       return normal ? c.fn : c.fs;
     };
   }
-  throw bad("expected e<i>.<field> or e<i>.gap|fn|fs.<other>");
+  throw bad("expected e<i>.<field> or e<i>.gap|fn|fs|links|mobilised.<other>");
 }
 
 /// Parses "f(a,b,...)"'s comma-separated numbers (exactly `count` of them); throws std::invalid_argument.
@@ -184,7 +189,8 @@ double mean_increment(const Simulation& s) {
 
 bool reads_contact_forces(const std::string& name) {
   const auto p = split(name, '.');
-  return name == "unbalanced_force_ratio" || (p.size() == 3 && (p[1] == "fn" || p[1] == "fs" || p[1] == "links"));
+  return name == "unbalanced_force_ratio" ||
+         (p.size() == 3 && (p[1] == "fn" || p[1] == "fs" || p[1] == "links" || p[1] == "mobilised"));
 }
 
 double unbalanced_force_ratio(const Simulation& s) {
@@ -342,7 +348,7 @@ std::string quantity_unit(const std::string& name) {
   if (p.size() == 3) {  // e<i>.gap|fn|fs|links.<other>
     if (p[1] == "gap") return "m";
     if (p[1] == "fn" || p[1] == "fs") return "N";
-    if (p[1] == "links") return "1";
+    if (p[1] == "links" || p[1] == "mobilised") return "1";
   }
   const std::string f = p.size() >= 2 ? name.substr(name.find('.') + 1) : std::string();
   if (f == "x" || f == "y" || f.rfind("px(", 0) == 0 || f.rfind("py(", 0) == 0) return "m";

@@ -222,7 +222,7 @@ TEST_CASE("Every quantity name has its SI unit for the series header and the pro
       {"mean_increment", "m"}, {"unbalanced_force_ratio", "1"}, {"e3.x", "m"}, {"e3.y", "m"}, {"e3.phi", "rad"},
       {"e3.vx", "m/s"}, {"e3.vy", "m/s"}, {"e3.omega", "rad/s"}, {"e3.fx", "N"}, {"e3.fy", "N"}, {"e3.moment", "N*m"},
       {"e3.px(1,-1)", "m"}, {"e0.py(0.5,-1)", "m"}, {"e0.gap.floor", "m"}, {"e0.gap.e1", "m"}, {"e0.fn.floor", "N"},
-      {"e0.fs.e2", "N"}, {"e0.links.floor", "1"}, {"floor.fx", "N"}, {"floor.fy", "N"}, {"floor.x", "m"},
+      {"e0.fs.e2", "N"}, {"e0.links.floor", "1"}, {"e0.mobilised.floor", "1"}, {"floor.fx", "N"}, {"floor.fy", "N"}, {"floor.x", "m"},
       {"floor.y", "m"}, {"plate_travel", "m"}, {"plate_dx", "m"}, {"plate_dy", "m"}, {"e0.corner_slide(38.5)", "m"},
       {"left.fn(0,0.0598)", "N"}, {"left.fs(0.1209,0.1814)", "N"}, {"walls.fx", "N"}, {"walls.fy", "N"},
       {"discharged.count", "1"}, {"discharged.mass", "kg"}, {"active.count", "1"}, {"active.mass", "kg"}};
