@@ -35,7 +35,8 @@ td.pass, td.fail, td.unreadable, td.na { font-weight: 600; text-align: center; }
 .plots { display: grid; grid-template-columns: repeat(auto-fill, minmax(440px, 1fr)); gap: 1.2em; }
 figure { margin: 0; }
 figure svg { width: 100%; height: auto; display: block; border: 1px solid #eaeef2; }
-.gallery { display: grid; grid-template-columns: repeat(auto-fill, minmax(240px, 1fr)); gap: 1em; }
+.gallery { display: flex; flex-wrap: wrap; gap: 16px; align-items: flex-start; }
+figure.snapshot { max-width: 100%; }
 figure.snapshot img { width: 100%; height: auto; display: block; border: 1px solid #eaeef2; }
 figcaption { font-size: .9em; color: #57606a; margin-top: .2em; }
 .note { color: #953800; font-style: italic; font-size: .9em; }

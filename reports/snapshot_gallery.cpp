@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <system_error>
 
 #include "text_format.hpp"
@@ -24,7 +26,7 @@ std::string caption_of(const nlohmann::json& e) {
   std::string out = variant.empty() ? "" : variant + " \u00b7 ";
   if (at == "end") out += "end of the run: ";
   out += time ? "t = " + format_number(*time) + " s" : "t = " + (at.empty() ? std::string(missing_value) : at);
-  if (step) out += " (step " + format_number(*step) + ")";
+  if (step) out += " (step " + std::to_string(std::llround(*step)) + ")";
   return out;
 }
 
@@ -74,7 +76,7 @@ std::vector<SnapshotPicture> load_snapshots(const StudyResult& study, const fs::
   const auto& list = array_field(study.result, "snapshots");
   for (std::size_t k = 0; k < list.size(); ++k) {
     const auto& e = list[k];
-    SnapshotPicture p{text_field(e, "id"), title_of(e), caption_of(e), "", "", ""};
+    SnapshotPicture p{text_field(e, "id"), title_of(e), caption_of(e), "", "", "", 0};
     std::string why;
     const fs::path file = picture_path(study, e, why);
     const std::string bytes = file.empty() ? std::string() : read_text_file(file);
@@ -87,6 +89,8 @@ std::vector<SnapshotPicture> load_snapshots(const StudyResult& study, const fs::
       continue;
     }
     p.data_uri = "data:image/png;base64," + base64(bytes);
+    if (bytes.size() >= 24)  // IHDR: the width, big-endian, after the signature, length and type
+      for (int i = 16; i < 20; ++i) p.width = p.width * 256 + static_cast<unsigned char>(bytes[i]);
     p.file = fmt::format("figures/{}-snapshot-{}.png", stem, k + 1);
     std::error_code ec;
     fs::copy_file(file, out_dir / p.file, fs::copy_options::overwrite_existing, ec);
@@ -99,11 +103,17 @@ std::vector<SnapshotPicture> load_snapshots(const StudyResult& study, const fs::
 std::string snapshot_gallery_html(const std::vector<SnapshotPicture>& pictures) {
   if (pictures.empty()) return {};
   std::string out = "<h3>Snapshots</h3>\n";
+  int shown = 240;  // px: the width of each picture of the current id
   for (std::size_t k = 0; k < pictures.size(); ++k) {
     const SnapshotPicture& p = pictures[k];
-    if (k == 0 || pictures[k - 1].id != p.id || pictures[k - 1].title != p.title)
+    if (k == 0 || pictures[k - 1].id != p.id || pictures[k - 1].title != p.title) {
       out += (k ? "</div>\n" : "") + fmt::format("<h4>{}</h4>\n<div class=\"gallery\">\n", html_escape(p.title));
-    out += "<figure class=\"snapshot\">\n";
+      std::size_t n = 0;
+      for (std::size_t j = k; j < pictures.size() && pictures[j].id == p.id && pictures[j].title == p.title; ++j) ++n;
+      shown = std::max(240, static_cast<int>((1290 - 16 * (n - 1)) / n));
+    }
+    const int width = p.width > 0 ? std::min(p.width, shown) : shown;
+    out += fmt::format("<figure class=\"snapshot\" style=\"width: {}px\">\n", width);
     if (!p.data_uri.empty())
       out += fmt::format("<img src=\"{}\" alt=\"{}\">\n", p.data_uri, html_escape(p.title + ", " + p.caption));
     else

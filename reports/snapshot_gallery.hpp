@@ -19,6 +19,7 @@ struct SnapshotPicture {
   std::string data_uri;    // "data:image/png;base64,…"; "" when missing
   std::string file;        // the copy for index.md, relative to out_dir ("figures/…png"); "" when missing
   std::string note;        // why missing
+  int width = 0;           // the PNG's own width [px] (its IHDR), 0 when missing
 };
 
 /// Reads the pictures a study's result.json lists (paths relative to the study's folder), copies them
@@ -26,7 +27,8 @@ struct SnapshotPicture {
 std::vector<SnapshotPicture> load_snapshots(const StudyResult& study, const std::filesystem::path& out_dir,
                                             const std::string& stem);
 
-/// The gallery: per snapshot id a heading (its title) and the pictures, each with its caption.
+/// The gallery: per snapshot id a heading (its title) and the pictures, each with its caption, side by
+/// side at min(own width, max(240 px, the page's 1290 px shared among the id's pictures)).
 std::string snapshot_gallery_html(const std::vector<SnapshotPicture>& pictures);
 std::string snapshot_gallery_markdown(const std::vector<SnapshotPicture>& pictures);
 
