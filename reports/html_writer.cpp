@@ -35,6 +35,9 @@ td.pass, td.fail, td.unreadable, td.na { font-weight: 600; text-align: center; }
 .plots { display: grid; grid-template-columns: repeat(auto-fill, minmax(440px, 1fr)); gap: 1.2em; }
 figure { margin: 0; }
 figure svg { width: 100%; height: auto; display: block; border: 1px solid #eaeef2; }
+.gallery { display: flex; flex-wrap: wrap; gap: 16px; align-items: flex-start; }
+figure.snapshot { max-width: 100%; }
+figure.snapshot img { width: 100%; height: auto; display: block; border: 1px solid #eaeef2; }
 figcaption { font-size: .9em; color: #57606a; margin-top: .2em; }
 .note { color: #953800; font-style: italic; font-size: .9em; }
 .missing-figure { border: 1px dashed #d0d7de; padding: 2em 1em; color: #953800; }
@@ -275,6 +278,7 @@ std::string study_section(const StudyReport& study) {
       out += figure_block(study.figures[k], fmt::format("{}-f{}-", prefix, k + 1));
     out += "</div>\n";
   }
+  out += snapshot_gallery_html(study.snapshots);
   const auto& tables = array_field(result, "tables");
   if (!tables.empty()) {
     out += "<h3>Tables</h3>\n";

@@ -184,6 +184,7 @@ std::string study_section(const StudyReport& study) {
     out += "### Figures\n\n";
     for (const auto& f : study.figures) out += figure(f);
   }
+  out += snapshot_gallery_markdown(study.snapshots);
   const auto& tables = array_field(result, "tables");
   if (!tables.empty()) {
     out += "### Tables\n\n";

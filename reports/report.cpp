@@ -35,7 +35,7 @@ void remove_old_figures(const fs::path& figures_dir) {
   std::error_code ignored;
   for (const auto& entry : fs::directory_iterator(figures_dir, ignored)) {
     const auto extension = entry.path().extension();
-    if (entry.is_regular_file() && (extension == ".svg" || extension == ".gp"))
+    if (entry.is_regular_file() && (extension == ".svg" || extension == ".gp" || extension == ".png"))
       fs::remove(entry.path(), ignored);
   }
 }
@@ -141,13 +141,16 @@ Written write_report(const Options& options, const fs::path& gnuplot) {
   FigureRenderer renderer(options.out_dir, gnuplot);
   std::set<std::string> used_stems;
   for (auto& source : studies) {
-    StudyReport study{std::move(source), {}, {}};
+    StudyReport study{std::move(source), {}, {}, {}};
     if (study.source.readable()) {
       try {
-        render_study_plots(study, unique_stem(study.source.folder, used_stems), renderer);
+        const std::string stem = unique_stem(study.source.folder, used_stems);
+        render_study_plots(study, stem, renderer);
+        study.snapshots = load_snapshots(study.source, options.out_dir, stem);
       } catch (const std::exception& e) {  // e.g. a file system error: keep the other studies
         study.convergence.clear();
         study.figures.clear();
+        study.snapshots.clear();
         study.source.read_error = std::string("plots failed: ") + e.what();
         std::cerr << "report: warning: " << study.source.path.string() << ": " << e.what() << "\n";
       }

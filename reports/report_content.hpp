@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "snapshot_gallery.hpp"
 #include "study_result.hpp"
 
 namespace report {
@@ -22,6 +23,7 @@ struct StudyReport {
   StudyResult source;
   std::vector<RenderedFigure> convergence;  // one per entry of "series", same order
   std::vector<RenderedFigure> figures;      // one per entry of "figures", same order
+  std::vector<SnapshotPicture> snapshots;   // one per entry of "snapshots", same order (snapshot_gallery.hpp)
 };
 
 struct HeaderField {

@@ -5,7 +5,9 @@ Usage: check_report.py <index.html> [--chromium PATH]
 
 Checks (each failure is listed; exit status 1 if any):
   - every <figure> holds an inline SVG that the browser laid out with a non-zero size and that
-    contains drawn paths (no "missing figure" placeholder); every <img> loaded (naturalWidth > 0);
+    contains drawn paths, or a picture (<img>, a snapshot's PNG) laid out at 50 px or more (no "missing
+    figure" or "missing picture" placeholder); every <img> loaded (naturalWidth > 0), a broken one is
+    named by its alt text;
   - no tick label repeated along an axis of a figure (e.g. every tick reading 1.25e7);
   - no NaN / inf in the visible text of the page (the cited documentation's prose aside);
   - every link inside the page (contents, studies, citations of docs/) reaches an element of the page;
@@ -46,6 +48,8 @@ PROBE = r"""
   });
   document.querySelectorAll('figure').forEach(function (fig, k) {
     const svg = fig.querySelector('svg');
+    const img = fig.querySelector('img');
+    const ib = img ? img.getBoundingClientRect() : {width: 0, height: 0};
     const caption = (fig.querySelector('figcaption') || {}).textContent || ('figure ' + k);
     const r = svg ? svg.getBoundingClientRect() : {width: 0, height: 0};
     const texts = [];
@@ -57,10 +61,12 @@ PROBE = r"""
     });
     out.figures.push({caption: caption.trim().slice(0, 120), svg: !!svg, width: r.width, height: r.height,
                       paths: svg ? svg.querySelectorAll('path, polyline').length : 0,  // gnuplot draws paths, bench/suite.py polylines
-                      missing: !!fig.querySelector('.missing-figure'), texts: texts});
+                      missing: !!fig.querySelector('.missing-figure'), texts: texts,
+                      img: img ? {ok: img.complete && img.naturalWidth > 0, width: ib.width, height: ib.height} : null});
   });
   document.querySelectorAll('img').forEach(function (img) {
-    out.images.push({src: img.getAttribute('src'), ok: img.complete && img.naturalWidth > 0});
+    out.images.push({src: (img.getAttribute('src') || '').slice(0, 60), alt: img.getAttribute('alt') || '',
+                     ok: img.complete && img.naturalWidth > 0});
   });
   const pre = document.createElement('pre');
   pre.id = 'browser-check';
@@ -163,8 +169,12 @@ def main():
     problems = []
     for fig in result["figures"]:
         name = fig["caption"]
-        if fig["missing"] or not fig["svg"]:
+        if fig["missing"] or not (fig["svg"] or fig["img"]):
             problems.append(f"figure not rendered: {name}")
+            continue
+        if not fig["svg"]:  # a picture (a snapshot's PNG): loaded (the image list says if not) and laid out
+            if fig["img"]["ok"] and (fig["img"]["width"] < 50 or fig["img"]["height"] < 50):
+                problems.append(f"picture laid out at {fig['img']['width']:.0f} x {fig['img']['height']:.0f} px: {name}")
             continue
         if fig["width"] < 50 or fig["height"] < 50:
             problems.append(f"figure laid out at {fig['width']:.0f} x {fig['height']:.0f} px: {name}")
@@ -174,7 +184,7 @@ def main():
             problems.append(f"{name}: {p}")
     for img in result["images"]:
         if not img["ok"]:
-            problems.append(f"broken image: {img['src']}")
+            problems.append(f"broken image: {img['alt'] or img['src']}")
     for link in result["broken_links"][:20]:
         problems.append(f"link to nothing in the page: {link}")
     for m in re.finditer(r"(?<![A-Za-z])(nan|NaN|NAN|-?inf|-?Inf|-?INF|Infinity)(?![A-Za-z])", result["text"]):
@@ -188,7 +198,7 @@ def main():
     for p in problems:
         print("  FAIL " + p)
     if not problems:
-        print("  all figures rendered; no repeated tick labels; no NaN/inf; no raw Markdown")
+        print("  all figures and pictures rendered; no repeated tick labels; no NaN/inf; no raw Markdown")
     return 1 if problems else 0
 
 

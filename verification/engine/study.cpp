@@ -72,6 +72,7 @@ StudyResult run_marked(const Study& s, const fs::path& file, const fs::path& out
   if (s.kind == Kind::single || s.kind == Kind::refinement) run_levels(run);
   else if (s.kind == Kind::mode_map) run_mode_map(run);
   else run_stability(run);
+  const nlohmann::json snapshots = take_snapshots(run);  // the pictures, after the study's runs
   progress.close();
   const nlohmann::json figures = draw_figures(run);
   fill_tables(run);
@@ -85,6 +86,7 @@ StudyResult run_marked(const Study& s, const fs::path& file, const fs::path& out
       {"provenance", prov}, {"passed", run.passed}, {"checks", run.checks}, {"series", run.series},
       {"figures", figures}, {"tables", run.tables}};
   if (s.ensemble) result["ensemble"] = ensemble_json(*s.ensemble);
+  if (!snapshots.empty()) result["snapshots"] = snapshots;
   result["provenance"]["wall_time_s"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   result["provenance"]["command"] = fmt::format("dem2d study {} --out {} --jobs {}{}", file.string(), out.string(),

@@ -474,6 +474,7 @@ Study read_study(const fs::path& file_path) {
     s.tables.push_back(read_table(s, r, n));
     selected(s, s.tables.back().variants, file, n.source().begin.line, "table.variants");
   });
+  read_snapshots(s, top, file);
   top.finish();
   cross_check(s, file);
   check_probes(s, root, file);

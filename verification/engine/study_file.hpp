@@ -19,6 +19,7 @@
 #include "dem/cases/case_reader.hpp"
 #include "engine/refinement_levels.hpp"
 #include "engine/study_ensemble.hpp"
+#include "engine/study_snapshots.hpp"
 
 namespace ver {
 
@@ -100,6 +101,7 @@ struct Study {
   std::vector<Check> checks;
   std::vector<Figure> figures;
   std::vector<TableDecl> tables;
+  std::vector<Snapshot> snapshots;  // force-network pictures of runs (study_snapshots.hpp)
   nlohmann::json setup = nlohmann::json::object();
   // mode_map: block shapes (columns, rows) × friction angles × slope angles
   std::vector<std::pair<int, int>> blocks;

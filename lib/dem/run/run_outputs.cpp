@@ -92,7 +92,7 @@ void RunOutputs::picture(const Simulation& sim, bool wanted) {
   picture_step_ = sim.steps();
   const std::string name = fmt::format("picture_{:09d}.png", sim.steps());
   write_force_network_png(opt_.out_dir / "pictures" / name, sim, picture_options_);
-  pictures_.emplace_back(sim.time(), "pictures/" + name);
+  pictures_.push_back({sim.time(), sim.steps(), "pictures/" + name});
 }
 
 void RunOutputs::finish(const Simulation& sim, bool interrupted) {
@@ -105,7 +105,7 @@ void RunOutputs::commit(const Simulation& sim, nlohmann::json& summary, bool che
                         const std::vector<double>& loop) {
   if (!pictures_.empty()) {
     nlohmann::json list = nlohmann::json::array();
-    for (const auto& [t, name] : pictures_) list.push_back({{"time", t}, {"file", name}});
+    for (const Picture& p : pictures_) list.push_back({{"time", p.time}, {"step", p.step}, {"file", p.file}});
     summary["pictures"] = list;
   }
   if (!write_) return;

@@ -58,7 +58,12 @@ class RunOutputs {
   std::vector<std::int64_t> picture_steps_;
   std::size_t next_picture_ = 0;
   std::int64_t picture_step_ = -1;  // the step of the last picture written
-  std::vector<std::pair<double, std::string>> pictures_;
+  struct Picture {
+    double time;
+    std::int64_t step;
+    std::string file;
+  };
+  std::vector<Picture> pictures_;
   PictureOptions picture_options_;
 };
 

@@ -255,4 +255,6 @@ TEST_CASE("picture: a run writes its pictures at the chosen steps, and never an 
   CHECK(d.width == 200);
   CHECK(r.summary["pictures"].size() == 4);
   CHECK(r.summary["pictures"][1]["file"] == "pictures/picture_000000003.png");
+  CHECK(r.summary["pictures"][2]["step"] == 4);  // the step of each picture (study snapshots read it)
+  CHECK(r.summary["pictures"][2]["time"].get<double>() == Approx(4e-6));
 }
