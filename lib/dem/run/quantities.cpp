@@ -138,38 +138,28 @@ std::vector<double> call_numbers(const std::string& name, std::size_t open, std:
   return out;
 }
 
-/// moved.fraction(x0,x1,y0,y1,d): of the free elements whose centre lay in the box [x0,x1] × [y0,y1] [m]
-/// in the case's initial state (the model the quantity is compiled against: the case as generated, also
-/// for a restart), the fraction that now lie farther than d [m] from that position or have left the run
-/// (discharged). A silo's flow pattern: which parts of the fill take part in the flow (K Fig. 8, 9).
-QuantityFn moved_fraction(const std::string& name, const Model& m) {
+/// box.vx|vy(x0,x1,y0,y1): the mean velocity component of the active free elements whose centre lies in
+/// the box [x0,x1] × [y0,y1] [m] now (0 when none does). A silo's flow pattern: which parts of the fill
+/// move, and how fast, against the column over the slit (K Figs. 8, 9).
+QuantityFn box_velocity(const std::string& name, const Model&) {
+  const bool vx = name.rfind("box.vx(", 0) == 0;
   std::vector<double> a;
   try {
-    a = call_numbers(name, std::string("moved.fraction(").size(), 5);
+    a = call_numbers(name, std::string("box.vx(").size(), 4);
   } catch (const std::exception&) {
-    throw bad_quantity(name, "expected moved.fraction(x0,x1,y0,y1,d) with finite numbers in metres");
+    throw bad_quantity(name, "expected box.vx(x0,x1,y0,y1) or box.vy(x0,x1,y0,y1) with finite numbers in metres");
   }
-  if (!(a[0] < a[1] && a[2] < a[3] && a[4] > 0.0))
-    throw bad_quantity(name, "expected x0 < x1, y0 < y1 and d > 0 in moved.fraction(x0,x1,y0,y1,d)");
-  const Elements& e = m.elements;
-  std::vector<std::uint32_t> ids;
-  std::vector<Vec2> start;
-  for (std::size_t i = 0; i < e.size(); ++i)
-    if (e.active[i] && e.motion[i] == Motion::free && e.x[i] >= a[0] && e.x[i] <= a[1] && e.y[i] >= a[2] && e.y[i] <= a[3]) {
-      ids.push_back(e.id[i]);
-      start.push_back({e.x[i], e.y[i]});
-    }
-  if (ids.empty()) throw bad_quantity(name, "no free element lies in the box at the start");
-  const double d2 = a[4] * a[4];
-  return [ids = std::move(ids), start = std::move(start), d2](const Simulation& s) {
-    const Elements& now = s.model().elements;
-    std::size_t moved = 0;
-    for (std::size_t k = 0; k < ids.size(); ++k) {
-      const std::size_t i = s.index_of(ids[k]);
-      const double dx = now.x[i] - start[k].x, dy = now.y[i] - start[k].y;
-      moved += (!now.active[i] || dx * dx + dy * dy > d2) ? 1 : 0;
-    }
-    return static_cast<double>(moved) / static_cast<double>(ids.size());
+  if (!(a[0] < a[1] && a[2] < a[3])) throw bad_quantity(name, "expected x0 < x1 and y0 < y1 in box.vx|vy(x0,x1,y0,y1)");
+  return [a, vx](const Simulation& s) {
+    const Elements& e = s.model().elements;
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < e.size(); ++i)
+      if (e.active[i] && e.motion[i] == Motion::free && e.x[i] >= a[0] && e.x[i] <= a[1] && e.y[i] >= a[2] && e.y[i] <= a[3]) {
+        sum += vx ? e.vx[i] : e.vy[i];
+        ++n;
+      }
+    return n ? sum / static_cast<double>(n) : 0.0;
   };
 }
 
@@ -277,7 +267,7 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
         return [k, s0, s1](const Simulation& s) { return s.wall_band_force(k, s0, s1).normal; };
       return [k, s0, s1](const Simulation& s) { return s.wall_band_force(k, s0, s1).tangential; };
     }
-  if (name.rfind("moved.fraction(", 0) == 0) return moved_fraction(name, m);
+  if (name.rfind("box.vx(", 0) == 0 || name.rfind("box.vy(", 0) == 0) return box_velocity(name, m);
   // walls.fx, walls.fy: the force of the elements on all walls together (a settled silo: the weight)
   if (name == "walls.fx" || name == "walls.fy") {
     const bool x = name.back() == 'x';
@@ -332,7 +322,7 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
 std::string quantity_unit(const std::string& name) {
   if (name == "t") return "s";
   if (name == "step" || name == "contacts" || name == "unbalanced_force_ratio") return "1";
-  if (name.rfind("moved.fraction(", 0) == 0) return "1";
+  if (name.rfind("box.vx(", 0) == 0 || name.rfind("box.vy(", 0) == 0) return "m/s";
   if (name == "discharged.count" || name == "active.count") return "1";
   if (name == "discharged.mass" || name == "active.mass") return "kg";
   if (name == "active.top") return "m";

@@ -21,9 +21,8 @@
 //                                      along from→to (the wall-force depth profile of a silo) [N]
 //   <wall>.fn_max(s0,s1)               the largest normal force of a single contact in that band [N]
 //                                      (a silo's per-contact overpressure; 0 if no contact)
-//   moved.fraction(x0,x1,y0,y1,d)      of the free elements whose centre lay in the box [x0,x1]×[y0,y1]
-//                                      [m] in the case's initial state, the fraction now farther than d [m]
-//                                      from there or removed (a silo's flow pattern) [1]
+//   box.vx(x0,x1,y0,y1)  box.vy(…)    mean velocity of the active free elements whose centre lies in the
+//                                      box [x0,x1]×[y0,y1] [m] now, 0 if none (a silo's flow pattern) [m/s]
 //   plate_travel                       base plate travel δ_B = ∫|v_B| dt (base friction, M21) [m]
 //   plate_dx   plate_dy                base plate displacement since the start [m]
 //   e<i>.corner_slide(α)               slide δ of element i's lower corner (−1,−1) down a slope inclined
