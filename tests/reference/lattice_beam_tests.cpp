@@ -239,3 +239,23 @@ TEST_CASE("Lattice: with N = 1 the lattice has a zero-energy mode (alternating r
   m.segments = 2;
   CHECK_NOTHROW(ref::solve_lattice_beam(m));
 }
+
+TEST_CASE("Lattice: supports in a groove lift off one core each under load (no-tension reference)", "[lattice_beam]") {
+  // 4 × 16 and 8 × 32 (r = 5, 2.5 mm): x = ±50 mm lies between two bottom cores, each support touches
+  // two cores. With linear contacts one of each pair pulls and the beam comes out too stiff; the
+  // no-tension solve opens it (the DEM carries 0 N there).
+  for (int rows : {4, 8}) {
+    auto m = md_beam(rows, false);
+    m.no_tension = false;
+    const auto linear = ref::solve_lattice_beam(m);
+    CHECK(linear.max_contact_tension > 0.0);
+    m.no_tension = true;
+    const auto out = ref::solve_lattice_beam(m);
+    CHECK(out.open_contacts == 2);
+    CHECK(out.max_contact_tension < 0.0);
+    CHECK(out.residual < 1e-12);
+    CHECK(out.stiffness < linear.stiffness);
+    INFO("rows " << rows << ": no tension " << out.stiffness << " N/m, linear " << linear.stiffness << " N/m");
+    CHECK(linear.stiffness / out.stiffness - 1.0 > 1e-3);
+  }
+}
