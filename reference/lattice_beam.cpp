@@ -310,6 +310,7 @@ LatticeBeamResponse solve_lattice_beam(const LatticeBeamModel& m, double tensile
     }
   out.max_contact_tension = -1e300;
   for (const Contact& k : contacts) {
+    out.contact_forces.push_back(net.spring_force(u, k.normal));
     if (!net.active(k.normal)) continue;               // open: carries nothing
     const double fn_ = net.spring_force(u, k.normal);  // tension > 0
     out.max_contact_tension = std::max(out.max_contact_tension, fn_);

@@ -116,6 +116,8 @@ struct LatticeBeamResponse {
   double first_crack_load = 0.0;      // P at which that spring reaches σ_t A/N (set by first_crack) [N]
   double max_contact_tension = 0.0;   // largest disk-contact normal tension per unit P (≤ 0: no-tension solve) [1]
   int open_contacts = 0;              // disk contacts that the no-tension solve left open (would pull)
+  std::vector<double> contact_forces; // normal force per unit P of each disk contact (left support's,
+                                      // right support's, the load disk's; tension > 0, 0 when open)
   double max_contact_friction = 0.0;  // largest |tangential|/normal force over the disk contacts [1]
   int deflection_body = -1;           // the lattice element whose point is measured
   double residual = 0.0;              // relative residual of the solve
