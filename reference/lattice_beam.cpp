@@ -282,7 +282,7 @@ LatticeBeamResponse solve_lattice_beam(const LatticeBeamModel& m, double tensile
   const bool supports_vertical = std::abs(disk_height(0, -m.span / 2.0, -1, m.support_radius) + m.support_radius) < 1e-12 * r;
   if (m.contact_kt == 0.0 && supports_vertical) net.prescribe(element(0, 0), 0, 0.0);
 
-  std::vector<UnilateralContact> unilateral;  // the disk contacts push only (K9): active-set solve
+  std::vector<UnilateralContact> unilateral;  // the disk contacts push only (K8): active-set solve
   if (m.no_tension)
     for (const Contact& k : contacts) unilateral.push_back({k.normal, k.tangential});
   const NoTensionSolution solution = solve_no_tension(net, unilateral);

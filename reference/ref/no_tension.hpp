@@ -2,7 +2,7 @@
 // Unilateral (no-tension) contacts in a linear rigid-spring network: the active-set solve.
 //
 // A unilateral contact is a normal spring that can only push (Cundall's disk contact, docs/model.md
-// K9: no tension) and, optionally, a tangential spring that acts only while the normal one does. The
+// K8: no tension) and, optionally, a tangential spring that acts only while the normal one does. The
 // static answer is the solution of the linear complementarity problem
 //     f_c ≤ 0 (compression),  g_c ≥ 0 (gap: the normal extension of an open contact),  f_c g_c = 0,
 // found by a primal active-set iteration: solve with every contact closed; open the closed contacts
