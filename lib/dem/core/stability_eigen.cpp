@@ -129,62 +129,67 @@ StartNetwork start_network(const Model& m) {
 
 namespace {
 
-/// Largest eigenvalue of a symmetric tridiagonal matrix (diagonal a, off-diagonal b) and the last
-/// component of its eigenvector, by cyclic Jacobi on the dense m × m matrix (m ≤ 100).
-std::pair<double, double> tridiagonal_max(const std::vector<double>& a, const std::vector<double>& b) {
+/// Largest eigenvalue of a symmetric tridiagonal matrix (diagonal a, off-diagonal b) by Sturm-sequence
+/// bisection (to roundoff), and its unit eigenvector by inverse iteration (Thomas algorithm).
+std::pair<double, std::vector<double>> tridiagonal_max(const std::vector<double>& a, const std::vector<double>& b) {
   const std::size_t m = a.size();
-  std::vector<double> t(m * m, 0.0), v(m * m, 0.0);
+  double lo = inf, hi = -inf;
   for (std::size_t i = 0; i < m; ++i) {
-    t[i * m + i] = a[i];
-    v[i * m + i] = 1.0;
-    if (i + 1 < m) t[i * m + i + 1] = t[(i + 1) * m + i] = b[i];
+    const double r = (i > 0 ? std::abs(b[i - 1]) : 0.0) + (i + 1 < m ? std::abs(b[i]) : 0.0);
+    lo = std::min(lo, a[i] - r), hi = std::max(hi, a[i] + r);
   }
-  for (int sweep = 0; sweep < 60; ++sweep) {
-    double off = 0.0, scale = 0.0;
-    for (std::size_t p = 0; p < m; ++p)
-      for (std::size_t q = 0; q < m; ++q) (p == q ? scale : off) += t[p * m + q] * t[p * m + q];
-    if (off <= 1e-30 * scale) break;
-    for (std::size_t p = 0; p < m; ++p)
-      for (std::size_t q = p + 1; q < m; ++q) {
-        const double apq = t[p * m + q];
-        if (apq == 0.0) continue;
-        const double theta = (t[q * m + q] - t[p * m + p]) / (2.0 * apq);
-        const double tn = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
-        const double c = 1.0 / std::sqrt(tn * tn + 1.0), s = tn * c;
-        for (std::size_t k = 0; k < m; ++k) {  // columns p, q
-          const double tkp = t[k * m + p], tkq = t[k * m + q];
-          t[k * m + p] = c * tkp - s * tkq;
-          t[k * m + q] = s * tkp + c * tkq;
-        }
-        for (std::size_t k = 0; k < m; ++k) {  // rows p, q
-          const double tpk = t[p * m + k], tqk = t[q * m + k];
-          t[p * m + k] = c * tpk - s * tqk;
-          t[q * m + k] = s * tpk + c * tqk;
-        }
-        for (std::size_t k = 0; k < m; ++k) {
-          const double vkp = v[k * m + p], vkq = v[k * m + q];
-          v[k * m + p] = c * vkp - s * vkq;
-          v[k * m + q] = s * vkp + c * vkq;
-        }
-      }
+  auto below = [&](double x) {  // eigenvalues below x
+    std::size_t count = 0;
+    double q = a[0] - x;
+    for (std::size_t i = 0;; ++i) {
+      if (q < 0.0) ++count;
+      if (i + 1 == m) break;
+      if (q == 0.0) q = 1e-300;
+      q = a[i + 1] - x - b[i] * b[i] / q;
+    }
+    return count;
+  };
+  for (int it = 0; it < 200 && hi - lo > 1e-15 * std::max(std::abs(lo), std::abs(hi)); ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (below(mid) >= m ? hi : lo) = mid;
   }
-  std::size_t top = 0;
-  for (std::size_t i = 1; i < m; ++i)
-    if (t[i * m + i] > t[top * m + top]) top = i;
-  return {t[top * m + top], v[(m - 1) * m + top]};
+  const double lambda = hi;
+  // inverse iteration with the shift just above λ: (T − σI) y = s
+  const double sigma = lambda + 1e-10 * std::max(std::abs(lambda), 1e-300);
+  std::vector<double> s(m, 1.0), c(m), d(m);
+  for (int it = 0; it < 3; ++it) {
+    d[0] = a[0] - sigma;
+    std::vector<double> y = s;
+    for (std::size_t i = 1; i < m; ++i) {  // forward elimination
+      const double f = b[i - 1] / (d[i - 1] == 0.0 ? 1e-300 : d[i - 1]);
+      d[i] = a[i] - sigma - f * b[i - 1];
+      y[i] -= f * y[i - 1];
+    }
+    s[m - 1] = y[m - 1] / (d[m - 1] == 0.0 ? 1e-300 : d[m - 1]);
+    for (std::size_t i = m - 1; i-- > 0;) s[i] = (y[i] - b[i] * s[i + 1]) / (d[i] == 0.0 ? 1e-300 : d[i]);
+    double n2 = 0.0;
+    for (double x : s) n2 += x * x;
+    for (double& x : s) x /= std::sqrt(n2);
+  }
+  (void)c;
+  return {lambda, s};
 }
 
 /// λ_max of a symmetric positive semi-definite operator on n values: Lanczos with full
 /// reorthogonalisation, at most 100 steps; returns the largest Ritz value plus its residual β|s_m|.
-double lanczos_max(int n, const std::function<void(const std::vector<double>&, std::vector<double>&)>& apply) {
+/// `start`: the start vector (empty: a fixed one with no symmetry of a lattice); replaced by the Ritz
+/// vector on return (a warm start for the next, nearby operator).
+double lanczos_max(int n, const std::function<void(const std::vector<double>&, std::vector<double>&)>& apply,
+                   std::vector<double>& start) {
   if (n == 0) return 0.0;
   const int steps = std::min(n, 100);
   const auto un = static_cast<std::size_t>(n);
   std::vector<std::vector<double>> basis;
   std::vector<double> alpha, beta, v(un), w(un);
   double norm0 = 0.0;
-  for (std::size_t i = 0; i < un; ++i) {  // a start vector with no symmetry of the lattice
-    v[i] = 1.0 + 0.5 * std::sin(1.7 * double(i) + 0.013 * double(i) * double(i));
+  for (std::size_t i = 0; i < un; ++i) {  // a start vector with no symmetry of the lattice, or the given one
+    const double fixed = 1.0 + 0.5 * std::sin(1.7 * double(i) + 0.013 * double(i) * double(i));
+    v[i] = start.size() == un ? start[i] + 1e-3 * fixed : fixed;  // keep every direction in the start
     norm0 += v[i] * v[i];
   }
   for (double& x : v) x /= std::sqrt(norm0);
@@ -205,10 +210,15 @@ double lanczos_max(int n, const std::function<void(const std::vector<double>&, s
     for (double x : w) b += x * x;
     b = std::sqrt(b);
     const bool last_step = b <= 1e-14 * std::abs(a) || k + 1 == steps;
-    if (last_step || (k >= 29 && (k + 1) % 15 == 0)) {  // the Ritz value every 15 steps (Jacobi is m³)
-      const auto [theta, last] = tridiagonal_max(alpha, beta);
-      residual = b * std::abs(last);
-      if (last_step || residual <= 1e-10 * theta) return theta + residual;
+    if (last_step || (k >= 9 && (k + 1) % 10 == 0)) {  // the Ritz value every 10 steps (Jacobi is m³)
+      const auto [theta, ritz] = tridiagonal_max(alpha, beta);
+      residual = b * std::abs(ritz.back());
+      if (last_step || residual <= 1e-7 * theta) {  // the residual is added: still an upper estimate
+        start.assign(un, 0.0);
+        for (std::size_t j = 0; j < basis.size(); ++j)
+          for (std::size_t i = 0; i < un; ++i) start[i] += ritz[j] * basis[j][i];
+        return theta + residual;
+      }
     }
     beta.push_back(b);
     for (std::size_t i = 0; i < un; ++i) v[i] = w[i] / b;
@@ -216,7 +226,8 @@ double lanczos_max(int n, const std::function<void(const std::vector<double>&, s
   return 0.0;  // not reached
 }
 
-double apply_weighted(const StartNetwork& net, bool sticking, const std::function<double(const NetworkSpring&)>& weight) {
+double apply_weighted(const StartNetwork& net, bool sticking, const std::function<double(const NetworkSpring&)>& weight,
+                      std::vector<double>& start) {
   return lanczos_max(net.dofs, [&](const std::vector<double>& x, std::vector<double>& y) {
     std::fill(y.begin(), y.end(), 0.0);
     for (const NetworkSpring& s : net.springs) {
@@ -234,17 +245,23 @@ double apply_weighted(const StartNetwork& net, bool sticking, const std::functio
         if (s.dof_b >= 0) y[static_cast<std::size_t>(s.dof_b + c)] += s.bb[c] * e;
       }
     }
-  });
+  }, start);
+}
+
+double rate_from(const StartNetwork& net, double dt, bool sticking, std::vector<double>& start) {
+  return apply_weighted(net, sticking, [dt](const NetworkSpring& s) { return dt * dt * s.k + 2.0 * dt * s.eta; }, start);  // (G2)
 }
 
 }  // namespace
 
 double network_rate(const StartNetwork& net, double dt, bool sticking) {
-  return apply_weighted(net, sticking, [dt](const NetworkSpring& s) { return dt * dt * s.k + 2.0 * dt * s.eta; });  // (G2)
+  std::vector<double> start;
+  return rate_from(net, dt, sticking, start);
 }
 
 double network_eigenvalue(const StartNetwork& net, bool damping, bool sticking) {
-  return apply_weighted(net, sticking, [damping](const NetworkSpring& s) { return damping ? s.eta : s.k; });
+  std::vector<double> start;
+  return apply_weighted(net, sticking, [damping](const NetworkSpring& s) { return damping ? s.eta : s.k; }, start);
 }
 
 double eigen_limit(const StartNetwork& net, Integrator integrator, bool sticking, double lambda_new, double c_new,
@@ -255,11 +272,26 @@ double eigen_limit(const StartNetwork& net, Integrator integrator, bool sticking
   double lo = stable_dt_rates(integrator, lam + lambda_new, c + c_new, inf);
   double hi = lam + lambda_new > 0.0 ? std::sqrt(kappa / (lam + lambda_new)) : kappa / (2.0 * (c + c_new));
   if (!std::isfinite(lo)) return inf;
-  auto excess = [&](double dt) { return network_rate(net, dt, sticking) + dt * dt * lambda_new + 2.0 * dt * c_new - kappa; };
-  if (excess(hi) < 0.0) lo = hi;  // (roundoff) the stiffness bound itself
-  while (hi - lo > 1e-4 * hi) {
-    const double mid = 0.5 * (lo + hi);
-    (excess(mid) < 0.0 ? lo : hi) = mid;
+  std::vector<double> warm;  // the top vector of the last operator: the next Lanczos starts there
+  auto excess = [&](double dt) { return rate_from(net, dt, sticking, warm) + dt * dt * lambda_new + 2.0 * dt * c_new - kappa; };
+  // Illinois regula falsi on the bracket (excess(lo) ≤ 0 ≤ excess(hi)); the stable end lo is returned
+  double g_lo = excess(lo), g_hi = excess(hi);
+  if (g_hi < 0.0) return integrator == Integrator::k19 ? std::min(hi, std::min(sticking ? net.hopf_stick : net.hopf, hopf_new)) : hi;
+  if (g_lo > 0.0) lo = 0.0, g_lo = -kappa;  // (Lanczos roundoff above the safe bracket end)
+  int side = 0;
+  for (int it = 0; it < 60 && hi - lo > 1e-4 * hi; ++it) {
+    double x = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    const double g = excess(x);
+    if (g < 0.0) {
+      lo = x, g_lo = g;
+      if (side == -1) g_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = x, g_hi = g;
+      if (side == 1) g_lo *= 0.5;
+      side = 1;
+    }
   }
   const double hopf = std::min(sticking ? net.hopf_stick : net.hopf, hopf_new);
   return integrator == Integrator::k19 ? std::min(lo, hopf) : lo;  // (G4)
