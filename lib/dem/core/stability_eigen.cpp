@@ -154,9 +154,11 @@ std::pair<double, std::vector<double>> tridiagonal_max(const std::vector<double>
     (below(mid) >= m ? hi : lo) = mid;
   }
   const double lambda = hi;
+  std::vector<double> s(m, 1.0 / std::sqrt(double(m))), d(m);
+  const double scale = std::max(std::abs(lo), std::abs(hi));
+  if (m == 1 || !(scale > 0.0)) return {lambda, s};  // a zero operator: any unit vector
   // inverse iteration with the shift just above λ: (T − σI) y = s
-  const double sigma = lambda + 1e-10 * std::max(std::abs(lambda), 1e-300);
-  std::vector<double> s(m, 1.0), c(m), d(m);
+  const double sigma = lambda + 1e-10 * scale;
   for (int it = 0; it < 3; ++it) {
     d[0] = a[0] - sigma;
     std::vector<double> y = s;
@@ -171,7 +173,8 @@ std::pair<double, std::vector<double>> tridiagonal_max(const std::vector<double>
     for (double x : s) n2 += x * x;
     for (double& x : s) x /= std::sqrt(n2);
   }
-  (void)c;
+  for (double x : s)
+    if (!std::isfinite(x)) return {lambda, std::vector<double>(m, 1.0 / std::sqrt(double(m)))};
   return {lambda, s};
 }
 
