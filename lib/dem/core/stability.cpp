@@ -436,6 +436,13 @@ StartNetwork start_network_if_bonded(const Model& m) {
   return bond ? start_network(m) : StartNetwork{};
 }
 
+bool has_bonded_free(const Elements& e, const StartNetwork& net, std::size_t material) {
+  for (std::size_t i = 0; i < e.size(); ++i)
+    if (e.active[i] && e.motion[i] == Motion::free && static_cast<std::size_t>(e.material[i]) == material && net.bonded[i])
+      return true;
+  return false;
+}
+
 bool has_unbonded_free(const Elements& e, const StartNetwork& net, std::size_t material) {
   for (std::size_t i = 0; i < e.size(); ++i)
     if (e.active[i] && e.motion[i] == Motion::free && static_cast<std::size_t>(e.material[i]) == material && !net.bonded[i])
@@ -450,9 +457,11 @@ void apply_eigen_bound(const Model& m, const StartNetwork& net, const ClassRates
   out.eigen = true;
   out.lambda_max = network_eigenvalue(net, false, false);
   out.c_max = network_eigenvalue(net, true, false);
-  out.limit = eigen_limit(net, it, false, u.lam, u.c, u.hopf);
+  // both bounds are safe: the larger Δt of the two (a start contact is counted twice in the eigenvalue
+  // bound when the row sums of its element's walls are added, as for one PRE resting on a wall)
+  out.limit = std::max(out.limit_gershgorin, eigen_limit(net, it, false, u.lam, u.c, u.hopf));
   out.limit_start = eigen_limit(net, it, false, 0.0, 0.0, inf);
-  out.limit_sticking = std::min(out.limit, eigen_limit(net, it, true, u.lam_s, u.c_s, u.hopf_s));
+  out.limit_sticking = std::min(out.limit, std::max(out.limit_gershgorin_sticking, eigen_limit(net, it, true, u.lam_s, u.c_s, u.hopf_s)));
   out.assumptions += fmt::format(
       "; bonded structure: Δt from the largest eigenvalue of Δt²K + 2ΔtC (mass-normalised, {} DOF, {} springs of "
       "the contacts present at the start, Lanczos) plus the row-sum rates of the unbonded free elements' "
@@ -577,6 +586,16 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
     }
     if (net.any_bond && has_unbonded_free(e, net, a))
       unbonded.add(lam, c, hopf, aks.value + xk, acs.value + xc, hopf_s);
+    if (net.any_bond && has_bonded_free(e, net, a)) {
+      // bonded elements: the wall contacts they can still form and the extra terms (base friction), (G4)
+      const int wall_counts[3] = {0, max_seg, max_pt};
+      auto walls_only = [&](Weights Kind::*field) {
+        const Weights w[3] = {elem.*field, seg.*field, pt.*field};
+        return arrangement_max(w, wall_counts, sets, gaps).value;
+      };
+      unbonded.add(walls_only(&Kind::k) + xk, walls_only(&Kind::c) + xc, hopf, walls_only(&Kind::k_stick) + xk,
+                   walls_only(&Kind::c_stick) + xc, hopf_s);
+    }
     out.limit_sticking = std::min(out.limit_sticking, limit_s);
     if (first || limit < out.limit) {
       first = false;
