@@ -85,6 +85,15 @@ int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
   if (b.limit_sticking < limit)
     fmt::print("    with every Coulomb shear spring sticking: {:.6g} s (dt is {:.3g} of it; a shear mode above it is "
                "bounded by sliding, |f_s| = mu f_n)\n", b.limit_sticking, m.numerics.dt / b.limit_sticking);
+  if (b.eigen)
+    fmt::print("    bonded structure: eigenvalue bound {:.6g} s (lambda_max = {:.6g} 1/s^2, c_max = {:.6g} 1/s at the start); "
+               "Gershgorin (row-sum) bound {:.6g} s, {:.3g} x smaller\n",
+               b.limit, b.lambda_max, b.c_max, b.limit_gershgorin, b.limit / b.limit_gershgorin);
+  if (b.eigen)
+    fmt::print("    the start network alone (without the contacts the unbonded elements can still form): {:.6g} s\n",
+               b.limit_start);
+  else
+    fmt::print("    Gershgorin (row-sum) bound {:.6g} s (no bonded structure: no eigenvalue bound)\n", b.limit_gershgorin);
   fmt::print("    assumed: {}\n", b.assumptions);
   return 0;
 }

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "ref/no_tension.hpp"
 #include "ref/require.hpp"
 
 namespace ref {
@@ -29,7 +30,7 @@ int RigidSpringNetwork::add_spring(int a, int b, double px, double py, double dx
   if (a == b) detail::fail(where, "a spring needs two different bodies", a);
   detail::require_non_negative(where, "k", k);
   if (std::abs(std::hypot(dx, dy) - 1.0) > 1e-12) detail::fail(where, "the direction must be a unit vector", std::hypot(dx, dy));
-  springs_.push_back({a, b, px, py, dx, dy, k});
+  springs_.push_back({a, b, px, py, dx, dy, k, true});
   return static_cast<int>(springs_.size()) - 1;
 }
 
@@ -76,12 +77,14 @@ double RigidSpringNetwork::extension(const std::vector<double>& u, int spring) c
 }
 
 double RigidSpringNetwork::spring_force(const std::vector<double>& u, int spring) const {
-  return springs_.at(static_cast<std::size_t>(spring)).k * extension(u, spring);
+  const Spring& s = springs_.at(static_cast<std::size_t>(spring));
+  return s.active ? s.k * extension(u, spring) : 0.0;
 }
 
 double RigidSpringNetwork::energy(const std::vector<double>& u) const {
   double w = 0.0;
   for (std::size_t i = 0; i < springs_.size(); ++i) {
+    if (!springs_[i].active) continue;
     const double e = extension(u, static_cast<int>(i));
     w += 0.5 * springs_[i].k * e * e;
   }
@@ -116,6 +119,7 @@ std::vector<double> RigidSpringNetwork::solve() const {
   for (int d = 0; d < dofs; ++d)
     if (index[d] >= 0) rhs[index[d]] = loads_[d];
   for (const Spring& s : springs_) {
+    if (!s.active) continue;
     int ia, ib;
     double ra[3], rb[3];
     row(s, ia, ib, ra, rb);
@@ -159,7 +163,7 @@ double RigidSpringNetwork::relative_residual(const std::vector<double>& u) const
     int ia, ib;
     double ra[3], rb[3];
     row(springs_[i], ia, ib, ra, rb);
-    const double f = springs_[i].k * extension(u, static_cast<int>(i));
+    const double f = spring_force(u, static_cast<int>(i));
     for (int j = 0; j < 3; ++j) {
       if (ia != ground) r[3 * ia + j] += ra[j] * f;
       if (ib != ground) r[3 * ib + j] += rb[j] * f;
@@ -278,8 +282,13 @@ LatticeBeamResponse solve_lattice_beam(const LatticeBeamModel& m, double tensile
   const bool supports_vertical = std::abs(disk_height(0, -m.span / 2.0, -1, m.support_radius) + m.support_radius) < 1e-12 * r;
   if (m.contact_kt == 0.0 && supports_vertical) net.prescribe(element(0, 0), 0, 0.0);
 
-  const std::vector<double> u = net.solve();
+  std::vector<UnilateralContact> unilateral;  // the disk contacts push only (K8): active-set solve
+  if (m.no_tension)
+    for (const Contact& k : contacts) unilateral.push_back({k.normal, k.tangential});
+  const NoTensionSolution solution = solve_no_tension(net, unilateral);
+  const std::vector<double>& u = solution.u;
   LatticeBeamResponse out;
+  out.open_contacts = static_cast<int>(std::count(solution.open.begin(), solution.open.end(), true));
   out.residual = net.relative_residual(u);
   out.deflection_body = element(0, m.columns / 2 - 1);
   const auto [xm, ym] = net.centre(out.deflection_body);
@@ -301,6 +310,8 @@ LatticeBeamResponse solve_lattice_beam(const LatticeBeamModel& m, double tensile
     }
   out.max_contact_tension = -1e300;
   for (const Contact& k : contacts) {
+    out.contact_forces.push_back(net.spring_force(u, k.normal));
+    if (!net.active(k.normal)) continue;               // open: carries nothing
     const double fn_ = net.spring_force(u, k.normal);  // tension > 0
     out.max_contact_tension = std::max(out.max_contact_tension, fn_);
     if (k.tangential >= 0 && fn_ < 0.0)

@@ -50,14 +50,19 @@ class RigidSpringNetwork {
   void prescribe(int body, int component, double value);  // component 0: u_x, 1: u_y, 2: θ
 
   // Solves K u = f for the free DOF, prescribed ones held; throws if K is singular on the free DOF.
+  // Inactive springs (set_active) carry nothing and are left out of K.
   std::vector<double> solve() const;
+
+  // A spring taken out (false) or put back (true): an open unilateral contact (ref/no_tension.hpp).
+  void set_active(int spring, bool active) { springs_.at(static_cast<std::size_t>(spring)).active = active; }
+  bool active(int spring) const { return springs_.at(static_cast<std::size_t>(spring)).active; }
 
   double extension(const std::vector<double>& u, int spring) const;
   std::pair<double, double> spring_point(int spring) const {
     const Spring& s = springs_.at(static_cast<std::size_t>(spring));
     return {s.px, s.py};
   }
-  double spring_force(const std::vector<double>& u, int spring) const;  // k × extension, tension > 0
+  double spring_force(const std::vector<double>& u, int spring) const;  // k × extension, tension > 0; 0 if inactive
   double energy(const std::vector<double>& u) const;                    // Σ ½ k e²
   // The y (or x) displacement of the body point at (px, py) in the undeformed configuration.
   double point_displacement(const std::vector<double>& u, int body, double px, double py, int component) const;
@@ -68,6 +73,7 @@ class RigidSpringNetwork {
   struct Spring {
     int a, b;
     double px, py, dx, dy, k;
+    bool active = true;
   };
   void row(const Spring& s, int& ia, int& ib, double ra[3], double rb[3]) const;
   std::vector<double> centres_;  // x0, y0, x1, y1, ...
@@ -99,6 +105,7 @@ struct LatticeBeamModel {
   double contact_kn = 0.0;           // every disk–PRE contact, normal [N/m]
   double contact_kt = 0.0;           // tangential [N/m]; 0: frictionless (slipping freely)
   double platen_kt = 0.0;            // platen–load-disk tangential [N/m]; 0: frictionless
+  bool no_tension = true;            // disk contacts push only (K9); false: they may pull (linear)
 };
 
 struct LatticeBeamResponse {
@@ -107,13 +114,17 @@ struct LatticeBeamResponse {
   double max_segment_tension = 0.0;   // largest face normal spring tension per unit P [1]
   double max_tension_x = 0.0, max_tension_y = 0.0;  // where that spring sits [m]
   double first_crack_load = 0.0;      // P at which that spring reaches σ_t A/N (set by first_crack) [N]
-  double max_contact_tension = 0.0;   // largest disk-contact normal tension per unit P (must be ≤ 0) [1]
+  double max_contact_tension = 0.0;   // largest disk-contact normal tension per unit P (≤ 0: no-tension solve) [1]
+  int open_contacts = 0;              // disk contacts that the no-tension solve left open (would pull)
+  std::vector<double> contact_forces; // normal force per unit P of each disk contact (left support's,
+                                      // right support's, the load disk's; tension > 0, 0 when open)
   double max_contact_friction = 0.0;  // largest |tangential|/normal force over the disk contacts [1]
   int deflection_body = -1;           // the lattice element whose point is measured
   double residual = 0.0;              // relative residual of the solve
 };
 
-// Solves the beam for a unit load on the load disk; the deflection point is the bottom corner at
+// Solves the beam for a unit load on the load disk, the disk contacts unilateral (no tension: the
+// active-set solve of ref/no_tension.hpp; a support in a groove may lift off one of its two cores); the deflection point is the bottom corner at
 // x = 0 of the bottom element left of mid-span (columns even), i.e. body point c + r(1, −1).
 // With tensile_strength > 0 also the first-crack load σ_t (2rℓ/N)/max_segment_tension.
 LatticeBeamResponse solve_lattice_beam(const LatticeBeamModel& model, double tensile_strength = 0.0);

@@ -10,6 +10,7 @@
 
 #include "dem/core/base_friction.hpp"
 #include "dem/core/simulation.hpp"
+#include "dem/core/stability_eigen.hpp"
 
 namespace dem {
 
@@ -418,6 +419,57 @@ std::vector<Stats> material_stats(const Elements& e, std::size_t nm) {
   return st;
 }
 
+/// The rates of the contacts that can still form (G4): the largest Gershgorin rates over the classes
+/// that have free elements not bonded at the start.
+struct ClassRates {
+  double lam = 0.0, c = 0.0, hopf = inf, lam_s = 0.0, c_s = 0.0, hopf_s = inf;
+  void add(double l, double cc, double h, double ls, double cs, double hs) {
+    lam = std::max(lam, l), c = std::max(c, cc), hopf = std::min(hopf, h);
+    lam_s = std::max(lam_s, ls), c_s = std::max(c_s, cs), hopf_s = std::min(hopf_s, hs);
+  }
+};
+
+StartNetwork start_network_if_bonded(const Model& m) {
+  bool face = false, bond = false;
+  for (const PairLaw& law : m.laws) face = face || law.kind == LawKind::face, bond = bond || (law.kind == LawKind::face && law.bond_at_start);
+  for (std::size_t i = 0; i < m.elements.size() && face && !bond; ++i) bond = m.elements.group[i] >= 0;
+  return bond ? start_network(m) : StartNetwork{};
+}
+
+bool has_bonded_free(const Elements& e, const StartNetwork& net, std::size_t material) {
+  for (std::size_t i = 0; i < e.size(); ++i)
+    if (e.active[i] && e.motion[i] == Motion::free && static_cast<std::size_t>(e.material[i]) == material && net.bonded[i])
+      return true;
+  return false;
+}
+
+bool has_unbonded_free(const Elements& e, const StartNetwork& net, std::size_t material) {
+  for (std::size_t i = 0; i < e.size(); ++i)
+    if (e.active[i] && e.motion[i] == Motion::free && static_cast<std::size_t>(e.material[i]) == material && !net.bonded[i])
+      return true;
+  return false;
+}
+
+/// A bonded structure: the limit from the eigenvalues of the start network (G3) plus the contacts that
+/// can still form (G4); never above what the row sums allow by more than they are conservative.
+void apply_eigen_bound(const Model& m, const StartNetwork& net, const ClassRates& u, StabilityBound& out) {
+  const Integrator it = m.numerics.integrator;
+  out.eigen = true;
+  out.lambda_max = network_eigenvalue(net, false, false);
+  out.c_max = network_eigenvalue(net, true, false);
+  // both bounds are safe: the larger Δt of the two (a start contact is counted twice in the eigenvalue
+  // bound when the row sums of its element's walls are added, as for one PRE resting on a wall)
+  out.limit = std::max(out.limit_gershgorin, eigen_limit(net, it, false, u.lam, u.c, u.hopf));
+  out.limit_start = eigen_limit(net, it, false, 0.0, 0.0, inf);
+  out.limit_sticking = std::min(out.limit, std::max(out.limit_gershgorin_sticking, eigen_limit(net, it, true, u.lam_s, u.c_s, u.hopf_s)));
+  out.assumptions += fmt::format(
+      "; bonded structure: Δt from the largest eigenvalue of Δt²K + 2ΔtC (mass-normalised, {} DOF, {} springs of "
+      "the contacts present at the start, Lanczos) plus the row-sum rates of the unbonded free elements' "
+      "classes (λ = {:.4g} 1/s², c = {:.4g} 1/s); a bonded element is assumed to form no contact beyond "
+      "its start neighbours (the row-sum limit without this: {:.6g} s)",
+      net.dofs, net.springs.size(), u.lam, u.c, out.limit_gershgorin);
+}
+
 }  // namespace
 
 StabilityBound assembly_stability_bound(const Model& m, const std::vector<StabilityTerm>& extra) {
@@ -435,6 +487,8 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
       "Coulomb contacts counted only in the sticking limit",
       100 * kOverlap);
   bool first = true;
+  const StartNetwork net = start_network_if_bonded(m);
+  ClassRates unbonded;  // the Gershgorin rates of the classes with free elements not bonded at the start
   for (std::size_t a = 0; a < nm; ++a) {
     const Stats& s = st[a];
     if (s.free_count == 0) continue;
@@ -530,6 +584,18 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
       out.law = "a non-finite stiffness, damping or mass";
       return out;
     }
+    if (net.any_bond && has_unbonded_free(e, net, a))
+      unbonded.add(lam, c, hopf, aks.value + xk, acs.value + xc, hopf_s);
+    if (net.any_bond && has_bonded_free(e, net, a)) {
+      // bonded elements: the wall contacts they can still form and the extra terms (base friction), (G4)
+      const int wall_counts[3] = {0, max_seg, max_pt};
+      auto walls_only = [&](Weights Kind::*field) {
+        const Weights w[3] = {elem.*field, seg.*field, pt.*field};
+        return arrangement_max(w, wall_counts, sets, gaps).value;
+      };
+      unbonded.add(walls_only(&Kind::k) + xk, walls_only(&Kind::c) + xc, hopf, walls_only(&Kind::k_stick) + xk,
+                   walls_only(&Kind::c_stick) + xc, hopf_s);
+    }
     out.limit_sticking = std::min(out.limit_sticking, limit_s);
     if (first || limit < out.limit) {
       first = false;
@@ -549,6 +615,9 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
       out.damping_rate = c;
     }
   }
+  out.limit_gershgorin = out.limit;
+  out.limit_gershgorin_sticking = out.limit_sticking;
+  if (net.any_bond) apply_eigen_bound(m, net, unbonded, out);
   return out;
 }
 
