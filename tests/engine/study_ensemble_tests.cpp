@@ -107,7 +107,7 @@ TEST_CASE("ensemble table: refused with file:line for a study of another kind an
   };
   refused("[ensemble]\nmembers = 1\nseed = \"arrangement.0.seed\"\n", "", "study.toml:6: ensemble.members");
   refused("[ensemble]\nmembers = 4\nseed = \"arrangement.0.seed=3\"\n", "", "ensemble.seed");
-  refused("[ensemble]\nmembers = 4\nseeds = \"arrangement.0.seed\"\n", "", "did you mean");
+  refused("[ensemble]\nmembers = 4\nseeds = \"arrangement.0.seed\"\n", "", "a misspelling of 'seed'");
   refused("[ensemble]\nmembers = 4\nseed = \"arrangement.0.seed\"\nconfidence = 1.5\n", "", "ensemble.confidence");
   refused(kEnsemble, "stability", "ensemble");
   // a seed without the jitter it places is refused by the case reader, at the [ensemble] line
@@ -117,20 +117,20 @@ TEST_CASE("ensemble table: refused with file:line for a study of another kind an
 TEST_CASE("ensemble run: members differ by the jitter seed, checks judge the interval, members.csv lists them") {
   const fs::path dir = folder("run");
   std::ofstream(dir / "case.toml") << small_fill();
-  // disk 5 (second row, first disk) sits near x = 2.5 cm: a tolerance of 1 mm holds, 1e-12 m cannot
+  // disk 5 (second row, middle disk) sits near x = 4.5 cm: a tolerance of 1 mm holds, 1e-12 m cannot
   std::ofstream(dir / "study.toml") << ensemble_study(dir / "case.toml", kEnsemble,
-                                                      "value = \"2.5 cm\"\nerror = \"abs\"\ntolerance = \"1 mm\"\n");
+                                                      "value = \"4.5 cm\"\nerror = \"abs\"\ntolerance = \"1 mm\"\n");
   ver::StudyOptions opt;
   opt.out_dir = dir / "out";
   opt.print = false;
   opt.jobs = 1;
   const ver::StudyResult r = ver::run_study(dir / "study.toml", opt);
-  const nlohmann::json& row = r.result["checks"][0];
+  const nlohmann::json& row = r.json["checks"][0];
   CHECK(row["members"] == 4);
   REQUIRE(row["ci_low"].is_number());
   CHECK(row["ci_low"].get<double>() < row["ci_high"].get<double>());  // the members differ
   CHECK_THAT(row["note"].get<std::string>(), Contains("95 % CI"));
   CHECK(r.passed);
-  CHECK(r.result["ensemble"]["members"] == 4);
+  CHECK(r.json["ensemble"]["members"] == 4);
   CHECK(fs::exists(dir / "out" / "members.csv"));
 }
