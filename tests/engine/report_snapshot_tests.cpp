@@ -10,23 +10,15 @@
 #include <string>
 
 #include "report.hpp"
+#include "temp_dir.hpp"
 #include "snapshot_gallery.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device seed;
-    path = fs::temp_directory_path() / ("dem2d_report_snapshot_test_" + std::to_string(seed()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("dem2d_report_snapshot_test_") {}
 };
 
 std::string read(const fs::path& path) {

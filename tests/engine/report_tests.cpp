@@ -10,6 +10,7 @@
 
 #include "gnuplot_plot.hpp"
 #include "report.hpp"
+#include "temp_dir.hpp"
 #include "report_content.hpp"
 #include "study_result.hpp"
 
@@ -17,18 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh folder under the system temp dir, removed at the end of the test.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device seed;
-    path = fs::temp_directory_path() / ("dem2d_report_test_" + std::to_string(seed()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("dem2d_report_test_") {}
 };
 
 void write(const fs::path& path, const std::string& text) {

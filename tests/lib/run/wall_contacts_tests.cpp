@@ -57,7 +57,9 @@ TEST_CASE("A disk sliding down a wall drawn upwards gives fs = -mu_w fn on the w
   const double fn = probe(r, "fn"), fs_up = probe(r, "fs");
   CHECK(probe(r, "vy") < -0.1);                           // it slides down
   CHECK_THAT(fn, WithinRel(0.5 * 5.0, 1e-3));             // pressed by m g_x (the damped normal oscillation has died out)
-  CHECK_THAT(fs_up, WithinRel(-0.1 * fn, 1e-9));          // sliding: |fs| = μ_w fn, pointing down on the wall
+  // sliding: |fs| = μ_w fn, pointing down on the wall (to 1e-6: the normal dashpot's residual force, 5e-8
+  // of f_n here, is in the probe's f_n but not in the spring force the Coulomb cap scales)
+  CHECK_THAT(fs_up, WithinRel(-0.1 * fn, 1e-6));
   CHECK_THAT(probe(r, "fy"), WithinRel(fs_up, 1e-12));    // the wall's y force is its force along from→to
   const auto cells = only_row(out / "wall_contacts.csv");
   CHECK(cells[0] == "up");
@@ -73,17 +75,19 @@ TEST_CASE("The same wall drawn downwards gives fs = +mu_w fn", "[run][wall]") {
   const fs::path out = test::fresh_dir("dem2d_unit_wall", "down");
   const dem::RunResult r = run(out, {"wall.0.from=[\"0 m\", \"1 m\"]", "wall.0.to=[\"0 m\", \"0 m\"]"});
   const double fn = probe(r, "fn");
-  CHECK_THAT(probe(r, "fs"), WithinRel(0.1 * fn, 1e-9));
+  CHECK_THAT(probe(r, "fs"), WithinRel(0.1 * fn, 1e-6));
   CHECK_THAT(probe(r, "fy"), WithinRel(-probe(r, "fs"), 1e-12));  // along from→to is −y now
   const auto cells = only_row(out / "wall_contacts.csv");
-  CHECK_THAT(std::stod(cells[6]), WithinRel(0.1 * fn, 1e-9));
+  CHECK_THAT(std::stod(cells[6]), WithinRel(0.1 * fn, 1e-6));
   CHECK_THAT(std::stod(cells[1]), WithinAbs(1.0 - std::stod(cells[3]), 1e-12));  // s from (0, 1) downwards
 }
 
-TEST_CASE("Held by friction the wall carries the weight: fs = m g_y", "[run][wall]") {
+TEST_CASE("With ample friction the disk rolls down the wall: a = 2g/3 and fs = -m g/3", "[run][wall]") {
+  // a disk (I = m r²/2) rolling without slip: m a = m g − F, I α = F r, a = α r → a = 2g/3, F = m g/3;
+  // μ_w = 10 far exceeds the F/f_n = (g/3)/g_x = 0.65 it needs
   const dem::RunResult r = run({}, {"contact.0.friction=10", "numerics.duration=0.2 s"});
-  CHECK_THAT(probe(r, "vy"), WithinAbs(0.0, 1e-6));
-  CHECK_THAT(probe(r, "fs"), WithinRel(-0.5 * 9.81, 1e-6));
+  CHECK_THAT(probe(r, "vy"), WithinRel(-2.0 / 3.0 * 9.81 * 0.2, 2e-3));  // the start-up of the contact lags a little
+  CHECK_THAT(probe(r, "fs"), WithinRel(-0.5 * 9.81 / 3.0, 1e-3));
 }
 
 TEST_CASE("Fill quantities: the exact area of a disk between two lines and active.top", "[run][fill]") {
