@@ -100,6 +100,9 @@ std::vector<HeaderField> header_fields(const nlohmann::json& provenance,
 }
 
 std::string study_anchor(const StudyResult& study) { return "study-" + slug(study.folder); }
+std::string figure_anchor(const StudyResult& study, const std::string& figure_id) {
+  return "figure-" + slug(study.folder) + "-" + slug(figure_id);
+}
 
 std::string study_name(const StudyResult& study) {
   const auto name = text_field(study.result, "study");
