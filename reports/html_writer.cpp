@@ -281,7 +281,7 @@ std::string study_section(const StudyReport& study) {
     }
     out += "</div>\n";
   }
-  out += snapshot_gallery_html(study.snapshots);
+  out += snapshot_gallery_html(study.snapshots, snapshot_anchor_prefix(source));
   const auto& tables = array_field(result, "tables");
   if (!tables.empty()) {
     out += "<h3>Tables</h3>\n";

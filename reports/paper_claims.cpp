@@ -42,8 +42,21 @@ void pick_checks(ClaimRow& row, const StudyReport& study) {
                           study.source.path.string());
 }
 
-/// The figure of the study with the claim's id; an error when the result declares none.
+/// The snapshot gallery of the study with the claim's id (linked to its heading); false if there is none.
+bool find_snapshot(ClaimRow& row, const StudyReport& study) {
+  for (const auto& s : array_field(study.source.result, "snapshots")) {
+    if (text_field(s, "id") != row.claim.figure) continue;
+    row.figure_anchor = snapshot_anchor(study.source, row.claim.figure);
+    row.figure_title = text_field(s, "title");
+    if (row.figure_title.empty()) row.figure_title = row.claim.figure;
+    return true;
+  }
+  return false;
+}
+
+/// The figure (or snapshot gallery) of the study with the claim's id; an error when the result declares none.
 void find_figure(ClaimRow& row, const StudyReport& study) {
+  if (find_snapshot(row, study)) return;
   const auto& figures = array_field(study.source.result, "figures");
   for (std::size_t k = 0; k < figures.size(); ++k) {
     if (text_field(figures[k], "id") != row.claim.figure) continue;
@@ -56,8 +69,9 @@ void find_figure(ClaimRow& row, const StudyReport& study) {
     if (row.figure_title.empty()) row.figure_title = row.claim.figure;
     return;
   }
-  const std::string what = fmt::format("figure \"{}\" is not among the {} figures of {}", row.claim.figure,
-                                       figures.size(), study.source.path.string());
+  const std::string what = fmt::format("figure \"{}\" is not among the {} figures and {} snapshots of {}", row.claim.figure,
+                                       figures.size(), array_field(study.source.result, "snapshots").size(),
+                                       study.source.path.string());
   row.error = row.error.empty() ? what : row.error + "; " + what;
   row.verdict = "error";
 }

@@ -21,7 +21,7 @@ struct PaperClaim {
   std::string says;     // the paper's statement, short, in the project's words
   std::string study;    // the study folder (verification/<study>/) that answers it; "" if none
   std::string check;    // a substring of the `quantity` of the study's check rows; "" if none
-  std::string figure;   // a figure id of the study; "" if none
+  std::string figure;   // a figure id or a snapshot id of the study; "" if none
   std::string status;   // one of claim_statuses
   std::string finding;  // a docs/findings.md entry ("K-9", "M-12", "F10"); "" if none
   std::string note;     // one line: what the project found against the paper

@@ -56,6 +56,9 @@ std::string study_anchor(const StudyResult& study);
 
 // Anchor of a study's figure (its declared id) in the HTML page.
 std::string figure_anchor(const StudyResult& study, const std::string& figure_id);
+// Anchor of the gallery of a study's snapshot id (snapshot_gallery.hpp) in the HTML page: the prefix + slug(id).
+std::string snapshot_anchor_prefix(const StudyResult& study);
+std::string snapshot_anchor(const StudyResult& study, const std::string& snapshot_id);
 
 // Display name: the "study" field, else the folder name.
 std::string study_name(const StudyResult& study);

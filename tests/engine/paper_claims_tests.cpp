@@ -151,6 +151,10 @@ const char* alpha_result = R"json({
   "figures": [
     { "id": "depth", "title": "Wall force against depth", "xlabel": "z", "ylabel": "f",
       "curves": [ { "label": "DEM", "x": [0, 1, 2], "y": [1, 2, 1.5], "style": "linespoints" } ] }
+  ],
+  "snapshots": [
+    { "id": "network", "title": "Force network at the end", "variant": "v", "at": "end", "time": null, "step": null,
+      "file": null, "note": "no picture: not drawn" }
   ]
 })json";
 
@@ -186,7 +190,8 @@ TEST_CASE("claims table: a failed check row shows FAIL, a study without result s
   const auto written = report_with_claims(
       tmp, claim("Fig. 7", "alpha", "check = \"bottom band\"\nfigure = \"depth\"\n", "checked") +
                claim("Fig. 8", "beta", "check = \"anything\"\n", "checked") +
-               claim("Conclusion 1", "alpha", "check = \"total force\"\n", "checked"));
+               claim("Conclusion 1", "alpha", "check = \"total force\"\n", "checked") +
+               claim("Fig. 6", "alpha", "figure = \"network\"\n", "shown"));
   CHECK(written.claim_errors.empty());
   const std::string section = claims_section(written.html);
   // both rows of the selector, the failed one first, in red, and the claim marked FAIL
@@ -204,8 +209,11 @@ TEST_CASE("claims table: a failed check row shows FAIL, a study without result s
   CHECK_THAT(section, Contains("href=\"#figure-alpha-depth\">Wall force against depth</a>"));
   const std::string page = read(written.html);
   CHECK_THAT(page, Contains("<figure id=\"figure-alpha-depth\">"));
+  // a snapshot id links the heading of its gallery
+  CHECK_THAT(section, Contains("href=\"#snapshot-alpha-network\">Force network at the end</a>"));
+  CHECK_THAT(page, Contains("<h4 id=\"snapshot-alpha-network\">Force network at the end</h4>"));
   CHECK_THAT(page, Contains("<li><a href=\"#paper-claims\">The papers, item by item</a></li>"));
-  CHECK_THAT(section, Contains("3 items: 3 checked, 0 shown, 0 finding, 0 absent; 1 with a failed check, 1 without a result."));
+  CHECK_THAT(section, Contains("4 items: 3 checked, 1 shown, 0 finding, 0 absent; 1 with a failed check, 1 without a result."));
   const std::string markdown = read(written.markdown);
   CHECK_THAT(markdown, Contains("## The papers, item by item"));
   CHECK_THAT(markdown, Contains("bottom band, K18: DEM 190.5, ref. 168 **FAIL**"));
@@ -222,7 +230,7 @@ TEST_CASE("claims table: a selector or figure that matches nothing in a present 
   CHECK_THAT(written.claim_errors[0], Contains("claims.toml:1: claim (Kiyama & Fujimura 1983, Fig. 7): check \"botom band\" "
                                                "matches none of the 3 check rows of"));
   CHECK_THAT(written.claim_errors[1], Contains("claims.toml:10: claim (Kiyama & Fujimura 1983, Fig. 6): figure \"dpeth\" is "
-                                               "not among the 1 figures of"));
+                                               "not among the 1 figures and 1 snapshots of"));
   const std::string section = claims_section(written.html);
   CHECK_THAT(section, Contains("<span class=\"badge fail\">error</span>"));
   CHECK_THAT(section, Contains("with a selector that matches nothing"));
