@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "study_result.hpp"
+#include "text_format.hpp"
 
 namespace report {
 
@@ -30,8 +31,10 @@ void pick_checks(ClaimRow& row, const StudyReport& study) {
   const auto& checks = array_field(study.source.result, "checks");
   for (const auto& check : checks) {
     const CheckRow cells = check_row(check);
-    if (cells.quantity.find(row.claim.check) != std::string::npos)
-      row.checks.push_back({cells.quantity, cells.dem, cells.reference, cells.status});
+    if (cells.quantity.find(row.claim.check) == std::string::npos) continue;
+    const auto low = number_field(check, "ci_low"), high = number_field(check, "ci_high");
+    const std::string interval = low && high ? "[" + format_number(*low) + ", " + format_number(*high) + "]" : "";
+    row.checks.push_back({cells.quantity, cells.dem, cells.reference, cells.status, interval});
   }
   if (!row.checks.empty()) {
     row.verdict = verdict_of(row.checks);

@@ -13,6 +13,7 @@ namespace report {
 
 struct ClaimCheck {  // one check row the claim's selector picked
   std::string quantity, dem, reference, status;  // status: PASS, FAIL, n/a
+  std::string interval;  // an ensemble check's 95 % CI of the mean, "[low, high]"; "" for a single run
 };
 
 struct ClaimRow {

@@ -113,8 +113,9 @@ std::string numbers_html(const ClaimRow& row) {
   const auto shared = shared_label(listed);
   if (!shared.empty()) out += "<span class=\"small\">" + h(shared.substr(0, shared.size() - 2)) + ":</span><br>";
   for (const auto* c : listed)
-    out += fmt::format("<span class=\"small\">{}</span>: DEM {} &middot; ref. {} {}<br>", h(c->quantity.substr(shared.size())),
-                       h(c->dem), h(c->reference),
+    out += fmt::format("<span class=\"small\">{}</span>: DEM {}{} &middot; ref. {} {}<br>", h(c->quantity.substr(shared.size())),
+                       h(c->dem), c->interval.empty() ? "" : " <span class=\"small\">95 % CI " + h(c->interval) + "</span>",
+                       h(c->reference),
                        badge_html(c->status == "PASS" ? "pass" : c->status == "FAIL" ? "fail" : "na", c->status));
   if (const auto more = more_rows(row); !more.empty()) out += "<span class=\"small\">" + h(more) + "</span>";
   return out.empty() ? "&mdash;" : out;
@@ -157,7 +158,8 @@ std::string numbers_markdown(const ClaimRow& row) {
   std::vector<std::string> parts;
   if (row.verdict == "error") parts.push_back("**error**: " + m(row.error));
   for (const auto* c : listed_checks(row))
-    parts.push_back(fmt::format("{}: DEM {}, ref. {} **{}**", m(c->quantity), m(c->dem), m(c->reference), c->status));
+    parts.push_back(fmt::format("{}: DEM {}{}, ref. {} **{}**", m(c->quantity), m(c->dem),
+                                c->interval.empty() ? "" : " (95 % CI " + m(c->interval) + ")", m(c->reference), c->status));
   if (const auto more = more_rows(row); !more.empty()) parts.push_back(more);
   return parts.empty() ? std::string(missing_value) : fmt::format("{}", fmt::join(parts, "; "));
 }

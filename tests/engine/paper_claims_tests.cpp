@@ -146,7 +146,8 @@ const char* alpha_result = R"json({
       "expect": "below", "passed": true },
     { "quantity": "bottom band, K18", "reference": 168.0, "dem": 190.5, "error": 22.5, "tolerance": 0,
       "expect": "below", "passed": false },
-    { "quantity": "total force", "reference": 1.0, "dem": 1.0, "error": 0, "tolerance": 1e-6, "passed": true }
+    { "quantity": "total force", "reference": 1.0, "dem": 1.0, "error": 0, "tolerance": 1e-6, "passed": true,
+      "ci_low": 0.98, "ci_high": 1.02, "members": 8 }
   ],
   "figures": [
     { "id": "depth", "title": "Wall force against depth", "xlabel": "z", "ylabel": "f",
@@ -204,6 +205,8 @@ TEST_CASE("claims table: a failed check row shows FAIL, a study without result s
   const auto conclusion = section.substr(section.find("Conclusion 1"));
   CHECK_THAT(conclusion.substr(0, conclusion.find("</tr>")), !Contains("badge fail"));
   CHECK_THAT(section, Contains("<span class=\"badge na\">no result</span>"));
+  // an ensemble check shows the 95 % interval of its mean
+  CHECK_THAT(section, Contains("DEM 1 <span class=\"small\">95 % CI [0.98, 1.02]</span> &middot; ref. 1"));
   // the counterpart links the study's section and the figure, which carries that id
   CHECK_THAT(section, Contains("href=\"#study-alpha\""));
   CHECK_THAT(section, Contains("href=\"#figure-alpha-depth\">Wall force against depth</a>"));
