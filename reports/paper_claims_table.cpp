@@ -181,7 +181,8 @@ std::string claims_html(const std::vector<ClaimRow>& rows) {
       "<style>.claim-checked { background: #dafbe1; color: #116329; } .claim-shown { background: #ddf4ff; color: #0550ae; }"
       " .claim-finding { background: #fff1e5; color: #953800; } .claim-absent { background: #eaeef2; color: #57606a; }"
       " table.claims td:nth-child(1) { white-space: nowrap; } table.claims td:nth-child(2) { min-width: 14em; }"
-      " table.claims td:nth-child(4) { min-width: 24em; } table.claims td:nth-child(6) { min-width: 16em; }</style>\n";
+      " table.claims td:nth-child(4) { min-width: 24em; } table.claims td:nth-child(5) { white-space: nowrap; }"
+      " table.claims td:nth-child(6) { min-width: 16em; }</style>\n";
   out += std::string("<p>") + intro + "</p>\n<p class=\"counts\">" + h(counts_text(count(rows), rows.size())) + "</p>\n";
   for (const auto& [paper, mine] : by_paper(rows)) out += paper_table_html(paper, mine);
   return out + "</section>\n";
