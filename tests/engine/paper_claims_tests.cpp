@@ -186,7 +186,7 @@ std::string claim(const std::string& item, const std::string& study, const std::
 
 }  // namespace
 
-TEST_CASE("claims table: a failed check row shows FAIL, a study without result shows no result", "[claims]") {
+TEST_CASE("claims table: a failed check row shows FAIL and a study without result shows no result", "[claims]") {
   TempDir tmp;
   const auto written = report_with_claims(
       tmp, claim("Fig. 7", "alpha", "check = \"bottom band\"\nfigure = \"depth\"\n", "checked") +
