@@ -5,7 +5,7 @@
 //   dem2d check CASE [--set key=value]...                check a case and print what it resolves to
 //   dem2d study STUDY [--out DIR] [--jobs N] [--fresh] [-v]   run one verification study (verification/*/study.toml)
 //   dem2d sweep STUDY [--out DIR] [--jobs N] [--fresh] [-v]   run one sensitivity study (verification/sensitivity_*/sensitivity.toml)
-//   dem2d report [--studies DIR] [--out DIR]             write the verification report from study results
+//   dem2d report [--studies DIR] [--out DIR] [--claims FILE]   write the verification report from study results
 #include <algorithm>
 #include <cmath>
 #include <csignal>
@@ -142,7 +142,7 @@ struct Cli {
   bool fresh = false;
   bool verbose = false;  // study, sweep: a line per finished run
   std::string studies_dir = "build/studies", report_dir = "build/report";
-  std::string docs_dir, bench_dir;
+  std::string docs_dir, bench_dir, claims_file;
   CLI::App *run = nullptr, *check = nullptr, *study = nullptr, *sweep = nullptr, *report = nullptr;
 };
 
@@ -215,6 +215,9 @@ void add_report(CLI::App& app, Cli& o) {
                   "a folder of kept tables, of which the name that sorts last (default: ./bench/results, else the "
                   "source tree's)")
       ->check(CLI::ExistingDirectory);
+  rep->add_option("--claims", o.claims_file,
+                  "The papers' items (verification/paper_claims.toml): the section \"The papers, item by item\"; a claim "
+                  "whose check or figure matches nothing in a present result makes the exit status 2");
 }
 
 /// A first word that is no subcommand: says so and returns true (CLI11 would ask for one).
@@ -257,11 +260,14 @@ int cmd_report(const Cli& cli, int argc, char** argv) {
   o.bench_dir = !cli.bench_dir.empty() ? fs::path(cli.bench_dir)
                 : fs::is_directory("bench/results") ? fs::path("bench/results")
                                                    : fs::path(DEM2D_SOURCE_DIR) / "bench/results";
+  o.claims_file = cli.claims_file;
   report::print_study_summary(cli.studies_dir);
   const report::Written w = report::write_report(o);
   fmt::print("report: {} studies, {} figures\n  {}\n  {}\n", w.studies, w.figures, fs::absolute(w.html).string(),
              fs::absolute(w.markdown).string());
-  return 0;
+  std::fflush(stdout);  // the errors after the summary, not inside it
+  for (const auto& e : w.claim_errors) fmt::print(stderr, "error: {}\n", e);
+  return w.claim_errors.empty() ? 0 : 2;  // a claim that matches nothing is a mistake in the claims file
 }
 
 /// Runs the chosen subcommand; each kind of error is an exit status (kExitCodes).

@@ -142,7 +142,7 @@ std::string render_md(const std::string& doc, const std::string& text, std::map<
           ids += "<a id=\"" + id + "\"></a>";
         }
     cmark_node* first = cmark_node_first_child(n);
-    static const std::regex entry("^((F[0-9]+)|([KM]-[0-9]+))\\.");
+    static const std::regex entry("^((F[0-9]+)|([KM]-[0-9]+))(\\.| \\()");  // "F2." and "F8 (M-C)."
     std::smatch m;
     const std::string lead = first && cmark_node_get_type(first) == CMARK_NODE_STRONG ? plain_text(first) : "";
     if (doc == "findings" && std::regex_search(lead, m, entry)) {

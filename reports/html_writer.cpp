@@ -5,6 +5,7 @@
 
 #include "cited_docs.hpp"
 #include "inline_svg.hpp"
+#include "paper_claims_table.hpp"
 #include "sensitivity_overview.hpp"
 #include "text_format.hpp"
 
@@ -170,8 +171,8 @@ std::string checks_table(const nlohmann::json& checks) {
   return out + "</tbody>\n</table>\n";
 }
 
-std::string figure_block(const RenderedFigure& figure, const std::string& id_prefix) {
-  std::string out = "<figure>\n";
+std::string figure_block(const RenderedFigure& figure, const std::string& id_prefix, const std::string& anchor = "") {
+  std::string out = anchor.empty() ? "<figure>\n" : "<figure id=\"" + anchor + "\">\n";
   if (!figure.svg.empty())
     out += inline_svg(figure.svg, id_prefix) + "\n";
   else
@@ -274,11 +275,13 @@ std::string study_section(const StudyReport& study) {
   }
   if (!study.figures.empty()) {
     out += "<h3>Figures</h3>\n<div class=\"plots\">\n";
-    for (std::size_t k = 0; k < study.figures.size(); ++k)
-      out += figure_block(study.figures[k], fmt::format("{}-f{}-", prefix, k + 1));
+    for (std::size_t k = 0; k < study.figures.size(); ++k) {
+      const auto id = text_field(array_field(result, "figures")[k], "id");  // the anchor a claim links to
+      out += figure_block(study.figures[k], fmt::format("{}-f{}-", prefix, k + 1), id.empty() ? "" : figure_anchor(source, id));
+    }
     out += "</div>\n";
   }
-  out += snapshot_gallery_html(study.snapshots);
+  out += snapshot_gallery_html(study.snapshots, snapshot_anchor_prefix(source));
   const auto& tables = array_field(result, "tables");
   if (!tables.empty()) {
     out += "<h3>Tables</h3>\n";
@@ -292,6 +295,8 @@ std::string contents_nav(const ReportContent& content) {
   std::string out = "<nav id=\"toc\">\n<h2>Contents</h2>\n<ol>\n"
                     "<li><a href=\"#contents\">Studies: overview</a></li>\n"
                     "<li><a href=\"#summary\">Every check</a></li>\n";
+  if (!content.claims_html.empty())
+    out += fmt::format("<li><a href=\"#{}\">{}</a></li>\n", claims_section_id, claims_section_title);
   if (!sensitivity_overview_rows(content).empty())
     out += "<li><a href=\"#sensitivity-overview\">Sensitivity studies: overview</a></li>\n";
   for (const auto& study : content.studies) {
@@ -321,6 +326,7 @@ std::string html_page(const ReportContent& content) {
   out += overview_section(content);
   out += sensitivity_overview_section(content);
   out += summary_section(content);
+  out += content.claims_html;
   for (const auto& study : content.studies) out += study_section(study);
   out += content.speed_html;
   if (!content.docs_html.empty())

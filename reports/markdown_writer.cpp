@@ -236,6 +236,7 @@ std::string markdown_page(const ReportContent& content) {
     out += "\n";
   }
   out += summary(content);
+  out += content.claims_markdown;
   for (const auto& study : content.studies) out += study_section(study);
   out += content.speed_markdown;
   out +=

@@ -13,6 +13,7 @@
 #include "speed_table.hpp"
 #include "html_writer.hpp"
 #include "markdown_writer.hpp"
+#include "paper_claims_table.hpp"
 #include "report_content.hpp"
 #include "study_plots.hpp"
 #include "study_result.hpp"
@@ -129,6 +130,7 @@ Written write_report(const Options& options) {
 Written write_report(const Options& options, const fs::path& gnuplot) {
   if (!fs::is_directory(options.studies_dir))
     throw std::runtime_error("report: studies folder not found: " + options.studies_dir.string());
+  const auto claims = options.claims_file.empty() ? std::vector<PaperClaim>{} : read_paper_claims(options.claims_file);
   const fs::path figures_dir = options.out_dir / "figures";
   fs::create_directories(figures_dir);
   remove_old_figures(figures_dir);
@@ -159,6 +161,11 @@ Written write_report(const Options& options, const fs::path& gnuplot) {
   }
 
   Written written;
+  if (!options.claims_file.empty()) {
+    const auto rows = match_claims(claims, content.studies, written.claim_errors);
+    content.claims_html = claims_html(rows);
+    content.claims_markdown = claims_markdown(rows);
+  }
   written.html = options.out_dir / "index.html";
   written.markdown = options.out_dir / "index.md";
   const CitedDocs docs = options.docs_dir.empty() ? CitedDocs{} : render_cited_docs(options.docs_dir);

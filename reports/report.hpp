@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace report {
 
@@ -19,15 +20,20 @@ struct Options {
                                       // to it (cited_docs.hpp); empty or missing: citations stay text
   std::filesystem::path bench_dir;    // the speed benchmark's table and plot (speed_table.hpp: a bench/suite.py
                                       // output folder, or bench/results); empty or holding none: no section
+  std::filesystem::path claims_file;  // the papers' items (verification/paper_claims.toml, paper_claims_file.hpp),
+                                      // read before anything is written; empty: no section
 };
 
 struct Written {
   std::filesystem::path html, markdown;
   int studies;  // result.json files found (readable or not)
   int figures;  // SVG figures written
+  std::vector<std::string> claim_errors;  // claims whose selector or figure matches nothing in a present result
 };
 
-// Throws std::runtime_error if studies_dir is not a directory or the outputs cannot be written.
+// Throws std::runtime_error if studies_dir is not a directory or the outputs cannot be written, and
+// dem::CaseError for a claims file that does not read (nothing is written then). A claim that does not
+// match a present result is shown in its row and listed in Written::claim_errors, not thrown.
 // Malformed result files and failed gnuplot calls are reported in the page (and on stderr), not
 // thrown.
 Written write_report(const Options& options);

@@ -100,6 +100,13 @@ std::vector<HeaderField> header_fields(const nlohmann::json& provenance,
 }
 
 std::string study_anchor(const StudyResult& study) { return "study-" + slug(study.folder); }
+std::string figure_anchor(const StudyResult& study, const std::string& figure_id) {
+  return "figure-" + slug(study.folder) + "-" + slug(figure_id);
+}
+std::string snapshot_anchor_prefix(const StudyResult& study) { return "snapshot-" + slug(study.folder) + "-"; }
+std::string snapshot_anchor(const StudyResult& study, const std::string& snapshot_id) {
+  return snapshot_anchor_prefix(study) + slug(snapshot_id);
+}
 
 std::string study_name(const StudyResult& study) {
   const auto name = text_field(study.result, "study");

@@ -36,6 +36,7 @@ struct ReportContent {
   std::vector<StudyReport> studies;
   std::string docs_html;  // the cited documentation (cited_docs.hpp), "" if docs/ was not found
   std::string speed_html, speed_markdown;  // the speed benchmark's section (speed_table.hpp), "" if none
+  std::string claims_html, claims_markdown;  // the papers, item by item (paper_claims_table.hpp), "" if none
 };
 
 struct Counts {
@@ -52,6 +53,12 @@ std::vector<HeaderField> header_fields(const nlohmann::json& provenance,
 
 // Anchor of a study's section in the HTML page.
 std::string study_anchor(const StudyResult& study);
+
+// Anchor of a study's figure (its declared id) in the HTML page.
+std::string figure_anchor(const StudyResult& study, const std::string& figure_id);
+// Anchor of the gallery of a study's snapshot id (snapshot_gallery.hpp) in the HTML page: the prefix + slug(id).
+std::string snapshot_anchor_prefix(const StudyResult& study);
+std::string snapshot_anchor(const StudyResult& study, const std::string& snapshot_id);
 
 // Display name: the "study" field, else the folder name.
 std::string study_name(const StudyResult& study);

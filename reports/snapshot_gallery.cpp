@@ -100,14 +100,16 @@ std::vector<SnapshotPicture> load_snapshots(const StudyResult& study, const fs::
   return out;
 }
 
-std::string snapshot_gallery_html(const std::vector<SnapshotPicture>& pictures) {
+std::string snapshot_gallery_html(const std::vector<SnapshotPicture>& pictures, const std::string& anchor_prefix) {
   if (pictures.empty()) return {};
   std::string out = "<h3>Snapshots</h3>\n";
   int shown = 240;  // px: the width of each picture of the current id
   for (std::size_t k = 0; k < pictures.size(); ++k) {
     const SnapshotPicture& p = pictures[k];
     if (k == 0 || pictures[k - 1].id != p.id || pictures[k - 1].title != p.title) {
-      out += (k ? "</div>\n" : "") + fmt::format("<h4>{}</h4>\n<div class=\"gallery\">\n", html_escape(p.title));
+      const bool first_of_id = k == 0 || pictures[k - 1].id != p.id;  // an id once, also when its title changes
+      const std::string anchor = anchor_prefix.empty() || !first_of_id ? "" : " id=\"" + anchor_prefix + slug(p.id) + "\"";
+      out += (k ? "</div>\n" : "") + fmt::format("<h4{}>{}</h4>\n<div class=\"gallery\">\n", anchor, html_escape(p.title));
       std::size_t n = 0;
       for (std::size_t j = k; j < pictures.size() && pictures[j].id == p.id && pictures[j].title == p.title; ++j) ++n;
       shown = std::max(240, static_cast<int>((1290 - 16 * (n - 1)) / n));

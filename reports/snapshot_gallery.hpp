@@ -29,7 +29,8 @@ std::vector<SnapshotPicture> load_snapshots(const StudyResult& study, const std:
 
 /// The gallery: per snapshot id a heading (its title) and the pictures, each with its caption, side by
 /// side at min(own width, max(240 px, the page's 1290 px shared among the id's pictures)).
-std::string snapshot_gallery_html(const std::vector<SnapshotPicture>& pictures);
+/// A heading gets the id `anchor_prefix` + slug(id) when the prefix is not empty (the claims link to it).
+std::string snapshot_gallery_html(const std::vector<SnapshotPicture>& pictures, const std::string& anchor_prefix = "");
 std::string snapshot_gallery_markdown(const std::vector<SnapshotPicture>& pictures);
 
 /// Base64 (RFC 4648, with padding).

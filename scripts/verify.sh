@@ -11,7 +11,7 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.log 2>&1 || { cat build.l
 cmake --build build -j"$jobs" >> build.log 2>&1 || { tail -50 build.log; exit 1; }
 status=0
 ctest --test-dir build -L verification -j"$jobs" --output-on-failure || status=$?
-build/app/dem2d report --studies build/studies --out build/report
+build/app/dem2d report --studies build/studies --out build/report --claims verification/paper_claims.toml
 echo "verify: report written to build/report/index.html (and index.md)"
 if command -v chromium > /dev/null || command -v chromium-browser > /dev/null; then
   ctest --test-dir build -L browser --output-on-failure || status=$?

@@ -29,6 +29,7 @@ TEST_CASE("The repository's docs render with an anchor per section, equation lab
   CHECK(d.html.find("<td><code>lib/dem/contact/face_contact*</code></td>") != std::string::npos);
   CHECK(report::citation_anchor(d, "F F1") == "doc-findings-F1");
   CHECK(report::citation_anchor(d, "F K-3") == "doc-findings-K-3");
+  CHECK(report::citation_anchor(d, "F F8") == "doc-findings-F8");  // "**F8 (M-C). …"
   CHECK(report::citation_anchor(d, "doc findings") == "doc-findings");
   // every anchor a citation can resolve to exists in the page once
   for (const auto& [key, id] : d.anchors) {

@@ -219,7 +219,9 @@ TEST_CASE("An output folder never mixes two runs", "[outputs]") {
   std::ofstream(out / "series.csv.partial") << "1,2,";
   std::ofstream(out / "checkpoint.bin") << "old";
   std::ofstream(out / "summary.json.4242-7.tmp") << "{";  // a temporary left by a killed write_file_atomic
+  std::ofstream(out / "wall_contacts.csv") << "old";  // an earlier run's wall profile (silo_arrangements reruns)
   REQUIRE(run(c, out).status == "completed");
+  CHECK_FALSE(fs::exists(out / "wall_contacts.csv"));
   CHECK_FALSE(fs::exists(out / "summary.json.4242-7.tmp"));
   CHECK_FALSE(fs::exists(out / "vtk" / "snapshot_999999999.vtp"));
   CHECK_FALSE(fs::exists(out / "series.csv.partial"));
