@@ -14,6 +14,7 @@
 #include "dem/cases/case_file.hpp"
 #include "paper_claims_file.hpp"
 #include "report.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
@@ -21,17 +22,8 @@ using Catch::Matchers::StartsWith;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device seed;
-    path = fs::temp_directory_path() / ("dem2d_claims_test_" + std::to_string(seed()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("dem2d_claims_test_") {}
 };
 
 void write(const fs::path& path, const std::string& text) {
