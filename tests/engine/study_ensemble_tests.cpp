@@ -132,5 +132,12 @@ TEST_CASE("ensemble run: members differ by the jitter seed, checks judge the int
   CHECK_THAT(row["note"].get<std::string>(), Contains("95 % CI"));
   CHECK(r.passed);
   CHECK(r.json["ensemble"]["members"] == 4);
-  CHECK(fs::exists(dir / "out" / "members.csv"));
+  // members.csv: a header naming each probe once, then one row per member
+  std::ifstream csv(dir / "out" / "members.csv");
+  std::string header, line;
+  std::getline(csv, header);
+  CHECK(header == "variant,member,status,x5");
+  int rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  CHECK(rows == 4);
 }

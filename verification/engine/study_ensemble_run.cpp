@@ -29,17 +29,21 @@ std::vector<Planned> member_plan(const StudyRun& run, const std::vector<Planned>
 
 namespace {
 
-/// members.csv: every member's status and checked probes.
+/// members.csv: every member's status and every probe (each named once, in name order; a probe a member
+/// lacks is empty).
 void write_members_csv(const StudyRun& run, const std::vector<RunOut>& runs) {
   const Study& s = run.s;
   const auto nm = static_cast<std::size_t>(s.ensemble->members);
+  std::set<std::string> names;
+  for (const auto& r : runs)
+    for (const auto& [name, value] : r.probes) names.insert(name);
   std::ostringstream csv;
   csv << "variant,member,status";
-  for (const auto& c : s.checks) csv << "," << c.probe;
+  for (const auto& name : names) csv << "," << name;
   csv << "\n";
   for (std::size_t k = 0; k < runs.size(); ++k) {
     csv << '"' << s.variants[k / nm].label << "\"," << k % nm + 1 << "," << runs[k].status;
-    for (const auto& c : s.checks) csv << "," << fmt_value(probe_of(runs[k], c.probe));
+    for (const auto& name : names) csv << "," << fmt_value(probe_of(runs[k], name));
     csv << "\n";
   }
   dem::write_file_atomic(run.out / "members.csv", csv.str(), false);
