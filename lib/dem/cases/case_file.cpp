@@ -836,6 +836,7 @@ void Reader::read_output(const TableReader& top) {
         r.fail("wall_contacts", fmt::format("wall \"{}\" is named twice", name));
       o.wall_contact_walls.push_back(static_cast<std::uint32_t>(it->second));
     }
+    o.bond_breaks = r.boolean("bond_breaks", false);
     o.picture_width = r.integer("picture_width", 64, 8000, 800);
     o.picture_max_force = r.optional_quantity("picture_max_force", dims::force);
     if (o.picture_max_force) positive(r, "picture_max_force", *o.picture_max_force);

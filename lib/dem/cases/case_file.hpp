@@ -61,6 +61,9 @@ struct OutputSpec {
   // wall-force profile per contact, run/wall_contacts_csv.hpp); indices into Model::walls
   std::vector<std::string> wall_contacts;
   std::vector<std::uint32_t> wall_contact_walls;
+  // bond_breaks.csv: every bonded PRE link that breaks in tension (M8), when, where (run/bond_break_log.hpp);
+  // the pictures mark them
+  bool bond_breaks = false;
 };
 
 /// When a run counts as settled (run.cpp): every criterion given must hold at every step of a window

@@ -52,7 +52,10 @@ struct SegmentState {
   double qe = 0.0;  // accumulated elastic shear force Q_e [N] (M6)
   std::uint8_t linked = 0;  // the link carries force
   std::uint8_t intact = 1;  // still has its tensile strength and cohesion
+  std::uint8_t broke = 0;   // an intact link broke in tension (M8) since the breaks were last taken
+                            // (Simulation::take_bond_breaks); not part of the law's state
 };
+static_assert(sizeof(SegmentState) == 32, "a segment's state fills half a cache line (face_contact_lanes.hpp)");
 
 struct FaceHistory {
   double theta1 = 0.0, theta2 = 0.0;  // rotations relative to the contact frame since contact start
@@ -163,6 +166,7 @@ struct SegmentSums {
   const bool intact = s.intact != 0;
   if (s.pe < (intact ? in.tension_intact : in.tension_broken)) [[unlikely]] {  // (M8, M9): the link breaks and carries nothing
     s.linked = 0;
+    s.broke |= s.intact;  // a bond, not a re-formed link, broke: the bond-break log (output.bond_breaks)
     s.intact = 0;
     s.pe = s.qe = 0.0;
     return;

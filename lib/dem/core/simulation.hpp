@@ -123,6 +123,19 @@ class Simulation {
   };
   std::vector<WallContactForce> wall_contact_forces(std::uint32_t w) const;
 
+  /// The bonded (intact) links of the PRE faces that broke in tension (M8) since the last call, in slot
+  /// order (element pairs, then element–wall faces), and the marks cleared (bond_breaks.cpp). `point`
+  /// is the link's place on the face (ξ_i a along the face from its centre), `i`, `j` the element and
+  /// the other element or the wall, as indices of the arrays.
+  struct BondBreak {
+    std::uint32_t i = 0, j = 0;
+    bool wall = false;
+    int segment = 0;
+    double xi = 0.0;
+    Vec2 point{};
+  };
+  std::vector<BondBreak> take_bond_breaks();
+
   /// The run's kinematic blow-up test, made inside the step by each thread over its elements: of the
   /// active elements whose increment of the last step exceeds numerics.max_step_fraction × radius, the one
   /// that moved farthest relative to its radius (the first with the largest (|Δx|/r)², or the first whose

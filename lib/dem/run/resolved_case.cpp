@@ -183,6 +183,7 @@ nlohmann::json resolved_case_si(const Case& c) {
                  {"picture_max_force", c.output.picture_max_force ? nlohmann::json(*c.output.picture_max_force)
                                                                   : nlohmann::json(nullptr)}};
   if (!c.output.wall_contacts.empty()) j["output"]["wall_contacts"] = c.output.wall_contacts;
+  if (c.output.bond_breaks) j["output"]["bond_breaks"] = true;
   const StopSpec& st = c.stop;
   nlohmann::json stop = {{"settle_window", st.settle_window}, {"settle_min_time", st.settle_min_time}};
   stop["settled_increment"] = st.settled_increment ? nlohmann::json(*st.settled_increment) : nlohmann::json(nullptr);

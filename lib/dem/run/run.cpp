@@ -295,6 +295,7 @@ void RunLoop::steps() {
     sim.keep_contact_forces(forces || k + 1 == total_steps || interrupt_signal() != 0 ||
                             sim.steps() + 1 == opt.interrupt_at_step);
     sim.step();
+    if (c.output.bond_breaks) out.bond_breaks(sim, sim.take_bond_breaks());
     if (k == first_step && loop.energy_limit <= 0.0) {
       const Energies e1 = sim.energies();
       loop.scale = energy_scale(m, e1.kinetic + e1.elastic);

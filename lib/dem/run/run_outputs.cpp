@@ -95,6 +95,17 @@ void RunOutputs::picture(const Simulation& sim, bool wanted) {
   pictures_.push_back({sim.time(), sim.steps(), "pictures/" + name});
 }
 
+void RunOutputs::bond_breaks(const Simulation& sim, const std::vector<Simulation::BondBreak>& breaks) {
+  const Elements& e = sim.model().elements;
+  for (const auto& b : breaks) {
+    const std::string other = b.wall ? csv_field(sim.model().walls[b.j].name)
+                                     : fmt::format("{}", e.id.empty() ? b.j : e.id[b.j]);
+    bond_breaks_csv_ += fmt::format("{:.17g},{},{},{},{},{:.17g},{:.17g},{:.17g},tension (M8)\n", sim.time(), sim.steps(),
+                                    e.id.empty() ? b.i : e.id[b.i], other, b.segment, b.xi, b.point.x, b.point.y);
+    picture_options_.broken_bonds.push_back(b.point);
+  }
+}
+
 void RunOutputs::finish(const Simulation& sim, bool interrupted) {
   if (!(interrupted && row_step_ == sim.steps())) write_row(sim);
   if (!(interrupted && snapshot_step_ == sim.steps())) snapshot(sim);
@@ -114,6 +125,9 @@ void RunOutputs::commit(const Simulation& sim, nlohmann::json& summary, bool che
   csv_.commit();
   if (c_.output.vtk) write_pvd(opt_.out_dir / "snapshots.pvd", snapshots_);
   if (!c_.output.wall_contacts.empty()) write_file_atomic(opt_.out_dir / "wall_contacts.csv", wall_contacts_csv(sim, c_.output));
+  if (c_.output.bond_breaks)
+    write_file_atomic(opt_.out_dir / "bond_breaks.csv",
+                      "t [s],step,element,other,segment,xi,x [m],y [m],mode\n" + bond_breaks_csv_);
   write_file_atomic(opt_.out_dir / "summary.json", summary.dump(2) + "\n");
 }
 

@@ -38,6 +38,9 @@ class RunOutputs {
     return next_picture_ < picture_steps_.size() && picture_steps_[next_picture_] == step;
   }
   void checkpoint(const Simulation& sim, const std::vector<double>& loop);
+  /// The bonds that broke in the last step (output.bond_breaks): rows of bond_breaks.csv, marks on the
+  /// pictures from now on.
+  void bond_breaks(const Simulation& sim, const std::vector<Simulation::BondBreak>& breaks);
 
   /// The last row, snapshot and picture (an interrupted run does not repeat the ones of its last step).
   void finish(const Simulation& sim, bool interrupted);
@@ -65,6 +68,7 @@ class RunOutputs {
   };
   std::vector<Picture> pictures_;
   PictureOptions picture_options_;
+  std::string bond_breaks_csv_;  // bond_breaks.csv's rows so far
 };
 
 }  // namespace dem

@@ -258,3 +258,20 @@ TEST_CASE("picture: a run writes its pictures at the chosen steps, and never an 
   CHECK(r.summary["pictures"][2]["step"] == 4);  // the step of each picture (study snapshots read it)
   CHECK(r.summary["pictures"][2]["time"].get<double>() == Approx(4e-6));
 }
+
+TEST_CASE("picture: a broken bond is marked with an orange cross where it broke - nothing where none did", "[picture]") {
+  const auto path = test::write_temp("picture_row_breaks.toml", row_case(""));
+  dem::Case c = dem::read_case(path);
+  dem::Simulation sim(c.model);
+  sim.step();
+  dem::PictureOptions o;
+  o.max_line = 12.0;
+  const dem::Vec2 mark{0.0099, 0.006};  // above the contact line between elements 0 and 1, inside the fill
+  const dem::ForcePicture none = dem::draw_force_network(sim, o);
+  o.broken_bonds = {mark};
+  const dem::ForcePicture marked = dem::draw_force_network(sim, o);
+  const dem::Vec2 p = marked.frame.to_px(mark);
+  auto orange = [](dem::Rgb c) { return c.r > 200 && c.g > 80 && c.g < 160 && c.b < 60; };
+  CHECK(orange(marked.canvas.at(static_cast<int>(p.x), static_cast<int>(p.y))));
+  CHECK_FALSE(orange(none.canvas.at(static_cast<int>(p.x), static_cast<int>(p.y))));
+}

@@ -15,7 +15,8 @@ namespace dem {
 namespace {
 
 constexpr Rgb kBackground{255, 255, 255}, kElementFill{226, 226, 226}, kElementEdge{120, 120, 120},
-    kWall{30, 60, 150}, kCompression{0, 0, 0}, kTension{210, 30, 30}, kText{0, 0, 0}, kLegendBack{245, 245, 245};
+    kWall{30, 60, 150}, kCompression{0, 0, 0}, kTension{210, 30, 30}, kText{0, 0, 0}, kLegendBack{245, 245, 245},
+    kBroken{230, 120, 0};
 
 struct Box {
   double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
@@ -128,6 +129,13 @@ ForcePicture draw_force_network(const Simulation& sim, const PictureOptions& o) 
     }
     cv.line(a.x, a.y, b.x, b.y, width, c.fn > 0.0 ? kCompression : kTension);
   }
+  // Broken bonds (the crack pattern): a × at each link that broke, over everything else.
+  const double arm = std::clamp(0.25 * (std::isfinite(r_min) ? r_min * f.scale : 8.0), 2.0, 10.0);
+  for (const Vec2& p : o.broken_bonds) {
+    const Vec2 q = f.to_px(p);
+    cv.line(q.x - arm, q.y - arm, q.x + arm, q.y + arm, 1.5, kBroken);
+    cv.line(q.x - arm, q.y + arm, q.x + arm, q.y - arm, 1.5, kBroken);
+  }
   // Legend strip.
   const int y0 = f.scene_height;
   for (int y = y0; y < cv.height(); ++y) cv.line(0, y + 0.5, f.width, y + 0.5, 1.0, kLegendBack);
@@ -142,7 +150,9 @@ ForcePicture draw_force_network(const Simulation& sim, const PictureOptions& o) 
           s, kText);
   const int yb = y0 + 2 * s + line_h + sample_h;
   const int after = cv.text(x, yb, "compression", s, kCompression);
-  cv.text(cv.text(after, yb, ", ", s, kText), yb, "tension", s, kTension);
+  const int after_tension = cv.text(cv.text(after, yb, ", ", s, kText), yb, "tension", s, kTension);
+  if (!o.broken_bonds.empty())
+    cv.text(cv.text(after_tension, yb, ", ", s, kText), yb, fmt::format("x {} broken bond{}", o.broken_bonds.size(), o.broken_bonds.size() == 1 ? "" : "s"), s, kBroken);
   return pic;
 }
 

@@ -7,6 +7,7 @@
 // the scene states the time, the step and the scale. Removed (inactive) elements are not drawn.
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 #include "dem/core/simulation.hpp"
 #include "dem/core/vec2.hpp"
@@ -18,6 +19,7 @@ struct PictureOptions {
   int width = 800;                  // image width [px]; the height follows the scene's aspect
   std::optional<double> max_force;  // |f_n| drawn max_line wide [N]; none: the picture's largest
   double max_line = 0.0;            // width of the largest force line [px]; 0: 0.6 × smallest radius
+  std::vector<Vec2> broken_bonds;   // where bonded links broke so far [m] (output.bond_breaks): drawn as ×
 };
 
 /// World (m, y up) to pixels (y down) for the scene part of the picture.
