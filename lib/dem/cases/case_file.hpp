@@ -61,6 +61,8 @@ struct OutputSpec {
   // wall-force profile per contact, run/wall_contacts_csv.hpp); indices into Model::walls
   std::vector<std::string> wall_contacts;
   std::vector<std::uint32_t> wall_contact_walls;
+  // dump.lammpstrj: the elements in LAMMPS' `dump custom` format at each series row (run/lammps_dump.hpp)
+  bool lammps_dump = false;
 };
 
 /// When a run counts as settled (run.cpp): every criterion given must hold at every step of a window
