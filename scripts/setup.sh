@@ -25,6 +25,9 @@ pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtoml
       chromium python3
       # the test that reads a run's series.csv with pandas.read_csv defaults (tests/outputs/read_series_pandas.py)
       python3-pandas
+      # the Python module (python/README.md: pybind11, the system interpreter's headers) and its tests (pytest,
+      # jsonschema: the case schema of `dem2d schema`; scipy: python/examples/calibrate_friction.py)
+      pybind11-dev python3-pybind11 python3-dev python3-pytest python3-scipy python3-jsonschema
       # sanitizers and fuzzing (scripts/sanitize.sh, scripts/fuzz.sh): clang 14, its runtime libraries
       # (ASan, UBSan, libFuzzer: libclang_rt.fuzzer-x86_64.a, only a Recommends of clang) and
       # llvm-symbolizer (package llvm) for readable stack traces

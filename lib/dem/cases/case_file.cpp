@@ -802,6 +802,7 @@ void Reader::read_output(const TableReader& top) {
     c.output.vtk = r.boolean("vtk", true);
     c.output.vtk_every = steps_or_time(r, "vtk_every", m.numerics.dt);
     OutputSpec& o = c.output;
+    o.lammps_dump = r.boolean("lammps_dump", false);
     o.pictures = r.boolean("pictures", false);
     o.picture_every = r.node("picture_every") && r.node("picture_every")->is_integer()
                           ? static_cast<double>(r.integer("picture_every", 0, std::int64_t{1} << 40, 0)) * m.numerics.dt

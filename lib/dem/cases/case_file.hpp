@@ -61,9 +61,11 @@ struct OutputSpec {
   // wall-force profile per contact, run/wall_contacts_csv.hpp); indices into Model::walls
   std::vector<std::string> wall_contacts;
   std::vector<std::uint32_t> wall_contact_walls;
-  // bond_breaks.csv: every bonded PRE link that breaks in tension (M8), when, where (run/bond_break_log.hpp);
+  // bond_breaks.csv: every bonded PRE link that breaks in tension (M8), when, where (core/bond_breaks.cpp, run/run_outputs.cpp);
   // the pictures mark them
   bool bond_breaks = false;
+  // dump.lammpstrj: the elements in LAMMPS' `dump custom` format at each series row (run/lammps_dump.hpp)
+  bool lammps_dump = false;
 };
 
 /// When a run counts as settled (run.cpp): every criterion given must hold at every step of a window

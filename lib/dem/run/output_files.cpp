@@ -98,7 +98,8 @@ bool is_run_output(const std::string& name) {
                                           base.find_first_not_of("0123456789-", dot + 1) == std::string::npos)
       base.resize(dot);
   return base == "series.csv" || base == "summary.json" || base == "snapshots.pvd" || base == "vtk" || base == "pictures" ||
-         base == "checkpoint.bin" || base == "wall_contacts.csv" || base == "bond_breaks.csv";
+         base == "checkpoint.bin" || base == "wall_contacts.csv" || base == "bond_breaks.csv" ||
+         base == "dump.lammpstrj";
 }
 
 void prepare_run_folder(const fs::path& dir) {

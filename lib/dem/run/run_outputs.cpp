@@ -7,6 +7,7 @@
 
 #include "dem/cases/text.hpp"
 #include "dem/run/checkpoint.hpp"
+#include "dem/run/lammps_dump.hpp"
 #include "dem/run/vtk_writer.hpp"
 #include "dem/run/wall_contacts_csv.hpp"
 
@@ -35,6 +36,7 @@ void RunOutputs::open(const Simulation& sim, std::int64_t total_steps) {
       for (std::size_t k = 0; k < series_.size(); ++k) head += (k ? "," : "") + csv_field(series_header(o.series[k]));
       csv_.write(head + "\n");
     }
+    if (o.lammps_dump) dump_.open(opt_.out_dir / "dump.lammpstrj");
     if (o.vtk) std::filesystem::create_directories(opt_.out_dir / "vtk");
     if (o.any_pictures()) std::filesystem::create_directories(opt_.out_dir / "pictures");
   }
@@ -58,6 +60,10 @@ void RunOutputs::open(const Simulation& sim, std::int64_t total_steps) {
 }
 
 void RunOutputs::write_row(const Simulation& sim) {
+  if (dump_.is_open()) {
+    row_step_ = sim.steps();
+    dump_.write(lammps_dump_frame(sim));
+  }
   if (!csv_.is_open()) return;
   row_step_ = sim.steps();
   row_.clear();
@@ -123,6 +129,7 @@ void RunOutputs::commit(const Simulation& sim, nlohmann::json& summary, bool che
   if (checkpoint_now) checkpoint(sim, loop);
   if (checkpoint_step_) summary["checkpoint"] = {{"file", "checkpoint.bin"}, {"step", *checkpoint_step_}};
   csv_.commit();
+  if (dump_.is_open()) dump_.commit();
   if (c_.output.vtk) write_pvd(opt_.out_dir / "snapshots.pvd", snapshots_);
   if (!c_.output.wall_contacts.empty()) write_file_atomic(opt_.out_dir / "wall_contacts.csv", wall_contacts_csv(sim, c_.output));
   if (c_.output.bond_breaks)

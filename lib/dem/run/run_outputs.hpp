@@ -30,7 +30,7 @@ class RunOutputs {
   /// of the pictures (the first step at or after each chosen time) up to `total_steps`.
   void open(const Simulation& sim, std::int64_t total_steps);
 
-  void write_row(const Simulation& sim);   // one series row (when the case has a series)
+  void write_row(const Simulation& sim);   // one series row (when the case has a series) and dump frame
   void snapshot(const Simulation& sim);    // one VTK snapshot (when the case asks for them)
   /// A picture if `wanted` or one of the chosen steps is this one (chosen steps passed are dropped).
   void picture(const Simulation& sim, bool wanted);
@@ -54,6 +54,7 @@ class RunOutputs {
   const bool write_;
   std::vector<QuantityFn> series_;
   StreamedFile csv_;
+  StreamedFile dump_;  // dump.lammpstrj (lammps_dump.hpp), a frame with each series row
   std::string row_;
   std::int64_t row_step_ = -1, snapshot_step_ = -1;  // the step of the last row / snapshot written
   std::vector<std::pair<double, std::string>> snapshots_;
