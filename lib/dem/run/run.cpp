@@ -426,7 +426,7 @@ RunResult run_case(Case c, const RunOptions& opt) {
   for (const auto& name : c.output.series) series.push_back(compile_quantity(name, m));
   std::vector<ProbeState> probes = start_probes(c, sim);
   const QuantityFn peak_quantity = after_peak_quantity(c, m);
-  // Blow-up criteria (README "Running a case"):
+  // Blow-up criteria (docs/running.md):
   // - energy: the mechanical energy change (kinetic + elastic + potential − initial potential) may not
   //   exceed F × the run's energy scale (energy_scale()); F = 4, or 2/(1 − r²) below the stability
   //   limit (r = Δt/limit: a stable explicit scheme's energy swings by up to 1/(1 − r²) at the limit);
