@@ -21,7 +21,7 @@ jobs=$(nproc 2>/dev/null || echo 2)
 spec=${1:-"[threads],[spatial_order]"}
 log=build-tsan.log
 if [ ! -f build-tsan/CMakeCache.txt ]; then
-  cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS="-fsanitize=thread" \
+  cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS="-fsanitize=thread" -DDEM2D_PYTHON=OFF \
         -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" > $log 2>&1 || { cat $log; exit 1; }
 fi
 start=$(date +%s)
