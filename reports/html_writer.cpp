@@ -5,6 +5,7 @@
 
 #include "cited_docs.hpp"
 #include "inline_svg.hpp"
+#include "feature_matrix.hpp"
 #include "paper_claims_table.hpp"
 #include "sensitivity_overview.hpp"
 #include "text_format.hpp"
@@ -297,6 +298,8 @@ std::string contents_nav(const ReportContent& content) {
                     "<li><a href=\"#summary\">Every check</a></li>\n";
   if (!content.claims_html.empty())
     out += fmt::format("<li><a href=\"#{}\">{}</a></li>\n", claims_section_id, claims_section_title);
+  if (!content.features_html.empty())
+    out += fmt::format("<li><a href=\"#{}\">{}</a></li>\n", features_section_id, features_section_title);
   if (!sensitivity_overview_rows(content).empty())
     out += "<li><a href=\"#sensitivity-overview\">Sensitivity studies: overview</a></li>\n";
   for (const auto& study : content.studies) {
@@ -327,6 +330,7 @@ std::string html_page(const ReportContent& content) {
   out += sensitivity_overview_section(content);
   out += summary_section(content);
   out += content.claims_html;
+  out += content.features_html;
   for (const auto& study : content.studies) out += study_section(study);
   out += content.speed_html;
   if (!content.docs_html.empty())

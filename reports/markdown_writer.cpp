@@ -237,6 +237,7 @@ std::string markdown_page(const ReportContent& content) {
   }
   out += summary(content);
   out += content.claims_markdown;
+  out += content.features_markdown;
   for (const auto& study : content.studies) out += study_section(study);
   out += content.speed_markdown;
   out +=

@@ -13,6 +13,7 @@
 #include "speed_table.hpp"
 #include "html_writer.hpp"
 #include "markdown_writer.hpp"
+#include "feature_matrix.hpp"
 #include "paper_claims_table.hpp"
 #include "report_content.hpp"
 #include "study_plots.hpp"
@@ -170,6 +171,13 @@ Written write_report(const Options& options, const fs::path& gnuplot) {
   written.markdown = options.out_dir / "index.md";
   const CitedDocs docs = options.docs_dir.empty() ? CitedDocs{} : render_cited_docs(options.docs_dir);
   content.docs_html = docs.html;
+  if (!options.docs_dir.empty() && fs::exists(options.docs_dir / "model.md")) {
+    std::ifstream model(options.docs_dir / "model.md");
+    const std::string text((std::istreambuf_iterator<char>(model)), std::istreambuf_iterator<char>());
+    const auto rows = match_features(feature_rows(text), content.studies);
+    content.features_html = features_html(rows);
+    content.features_markdown = features_markdown(rows);
+  }
   if (const auto speed = options.bench_dir.empty() ? std::nullopt : find_speed_table(options.bench_dir)) {
     std::string link;
     if (!speed->plot_svg.empty()) {  // the Markdown twin links its copy, as it does the studies' figures

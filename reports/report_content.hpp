@@ -37,6 +37,7 @@ struct ReportContent {
   std::string docs_html;  // the cited documentation (cited_docs.hpp), "" if docs/ was not found
   std::string speed_html, speed_markdown;  // the speed benchmark's section (speed_table.hpp), "" if none
   std::string claims_html, claims_markdown;  // the papers, item by item (paper_claims_table.hpp), "" if none
+  std::string features_html, features_markdown;  // model.md's equations against the studies (feature_matrix.hpp)
 };
 
 struct Counts {
