@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <unistd.h>
 #include <toml++/toml.h>
@@ -123,9 +125,9 @@ void read_header(Sens& s, const TableReader& top) {
 
 /// The value of a parameter bound as written, checked against the case key it sets: the case reader
 /// reads the case with `path = <value as written>` and refuses a wrong unit ("1 m" for a damping ratio).
-void check_against_case(const Sens& s, const TableReader& r, const Parameter& p, const char* key) {
+void check_against_case(const Sens& s, const TableReader& r, const Parameter& p, const char* key, const toml::node* at = nullptr) {
   if (s.function || p.path.empty()) return;
-  const toml::node& n = *r.node(key);
+  const toml::node& n = at ? *at : *r.node(key);
   const std::string written = n.is_string() ? *n.value<std::string>() : fmt::format("{:.17g}", *n.value<double>());
   std::vector<std::string> sets = s.set;
   sets.push_back(p.path + "=" + written);
@@ -136,21 +138,81 @@ void check_against_case(const Sens& s, const TableReader& r, const Parameter& p,
   }
 }
 
+/// The distribution of a parameter and the keys it takes, each a quantity in one kind of unit:
+///   uniform, log-uniform: low, high;  normal: mean, sd;  truncated-normal: mean, sd, low, high;
+///   triangular: low, mode, high;  log-normal: median, sigma_ln (the sd of ln x, a plain number);
+///   levels: levels = [x_1, …, x_k] (k >= 2, increasing).
+void read_distribution(const Sens& s, const TableReader& r, const toml::node& n, Parameter& p) {
+  using sens::Distribution;
+  const std::vector<std::string> names = {"uniform", "log-uniform", "normal", "truncated-normal", "triangular", "log-normal", "levels"};
+  const std::string name = r.choice("distribution", names, "uniform");
+  p.distribution = static_cast<Distribution>(std::find(names.begin(), names.end(), name) - names.begin());
+  p.log_uniform = p.distribution == Distribution::log_uniform;
+  const std::vector<const char*> keys =
+      p.distribution == Distribution::normal ? std::vector<const char*>{"mean", "sd"}
+      : p.distribution == Distribution::truncated_normal ? std::vector<const char*>{"mean", "sd", "low", "high"}
+      : p.distribution == Distribution::triangular ? std::vector<const char*>{"low", "mode", "high"}
+      : p.distribution == Distribution::log_normal ? std::vector<const char*>{"median"}
+      : p.distribution == Distribution::levels ? std::vector<const char*>{}
+      : std::vector<const char*>{"low", "high"};
+  for (const char* k : {"low", "high", "mean", "sd", "mode", "median", "sigma_ln", "levels"})  // a key of another distribution
+    if (r.has(k) && std::find_if(keys.begin(), keys.end(), [&](const char* x) { return std::string(x) == k; }) == keys.end() &&
+        !(p.distribution == Distribution::log_normal && std::string(k) == "sigma_ln") && !(p.distribution == Distribution::levels && std::string(k) == "levels"))
+      r.fail(k, fmt::format("a {} distribution does not take {}", name, k));
+  std::optional<dem::Quantity> first;
+  std::map<std::string, double> v;
+  auto quantity = [&](const char* key, const toml::node& at) {
+    r.mark(key);
+    const dem::Quantity q = r.any_quantity_of(at, key);
+    if (first && !(q.dim == first->dim))
+      r.fail_at(at, key, fmt::format("{} but the first value is {}: give all in one kind of unit", dem::to_string(q.dim), dem::to_string(first->dim)));
+    if (!first) first = q;
+    if (std::string(key) != "sd") check_against_case(s, r, p, key, &at);
+    return q.value;
+  };
+  for (const char* k : keys) {
+    if (!r.has(k)) r.fail_at(n, k, fmt::format("missing: a {} distribution takes {}", name, fmt::join(keys, ", ")));
+    v[k] = quantity(k, *r.node(k));
+  }
+  if (p.distribution == Distribution::levels) {
+    r.mark("levels");
+    const toml::node* ln = r.node("levels");
+    if (!ln || !ln->as_array() || ln->as_array()->size() < 2) r.fail_at(ln ? *ln : n, "levels", "expected an array of at least 2 values, e.g. [\"1 mm\", \"2 mm\"]");
+    for (const auto& x : *ln->as_array()) p.levels.push_back(quantity("levels", x));
+    for (std::size_t k = 1; k < p.levels.size(); ++k)
+      if (!(p.levels[k] > p.levels[k - 1])) r.fail_at(*ln, "levels", "expected increasing values");
+  }
+  p.angle = first && first->dim == dem::dims::angle;
+  p.mean = v.count("mean") ? v["mean"] : 0.0;
+  p.sd = v.count("sd") ? v["sd"] : 1.0;
+  p.mode = v.count("mode") ? v["mode"] : 0.0;
+  if (v.count("low")) p.low = v["low"];
+  if (v.count("high")) p.high = v["high"];
+  if ((p.distribution == Distribution::normal || p.distribution == Distribution::truncated_normal) && !(p.sd > 0.0))
+    r.fail("sd", "expected sd > 0");
+  if (p.distribution == Distribution::log_normal) {
+    if (!(v["median"] > 0.0)) r.fail("median", "expected median > 0");
+    p.mean = std::log(v["median"]);
+    p.sd = r.number_in("sigma_ln", 0.0, 10.0, 0.0, true);
+    if (!r.has("sigma_ln")) r.fail_at(n, "sigma_ln", "missing: a log-normal distribution takes median and sigma_ln (the sd of ln x)");
+  }
+  if (p.distribution == Distribution::triangular && !(p.mode >= p.low && p.mode <= p.high)) r.fail("mode", "expected low <= mode <= high");
+  if (!keys.empty() && std::find(keys.begin(), keys.end(), std::string("low")) != keys.end() &&
+      (!(p.high > p.low) || (p.log_uniform && !(p.low > 0.0))))
+    r.fail_at(n, "low", fmt::format("\"{}\": need low < high (and low > 0 for log-uniform)", p.label));
+  if (p.distribution == Distribution::normal || p.distribution == Distribution::log_normal || p.distribution == Distribution::levels) {
+    p.low = sens::value_at(p, 0.0);  // the support's ends as the designs reach them
+    p.high = sens::value_at(p, 1.0);
+  }
+}
+
 Parameter read_parameter(const Sens& s, const TableReader& r, const toml::node& n) {
   Parameter p;
   p.path = r.string("path", "");
   if (p.path.empty() && !s.function) r.fail_at(n, "path", "missing: the --set path, e.g. contact.0.kn");
   if (!p.path.empty() && s.function) r.fail("path", "a test function's inputs have no case path: remove path");
   p.label = r.string("label", p.path.empty() ? fmt::format("x{}", s.params.size() + 1) : p.path);
-  const dem::Quantity low = r.any_quantity("low"), high = r.any_quantity("high");
-  if (!(low.dim == high.dim)) r.fail("high", fmt::format("low is {}, high is {}: give both in one kind of unit",
-                                                         dem::to_string(low.dim), dem::to_string(high.dim)));
-  p.low = low.value;
-  p.high = high.value;
-  p.angle = low.dim == dem::dims::angle;
-  check_against_case(s, r, p, "low");
-  check_against_case(s, r, p, "high");
-  p.log_uniform = r.choice("distribution", {"uniform", "log-uniform"}, "uniform") == "log-uniform";
+  read_distribution(s, r, n, p);
   p.integer = r.boolean("integer", false);
   r.mark("also");
   if (const toml::node* an = r.node("also")) {
@@ -168,10 +230,8 @@ Parameter read_parameter(const Sens& s, const TableReader& r, const toml::node& 
       p.also.push_back(fo);
     }
   }
-  if (p.integer && (p.log_uniform || p.low != std::floor(p.low) || p.high != std::floor(p.high)))
+  if (p.integer && (p.distribution != sens::Distribution::uniform || p.low != std::floor(p.low) || p.high != std::floor(p.high)))
     r.fail("integer", fmt::format("\"{}\": integer parameters need integer low and high, uniform", p.label));
-  if (!(p.high > p.low) || (p.log_uniform && !(p.low > 0.0)))
-    r.fail_at(n, "low", fmt::format("\"{}\": need low < high (and low > 0 for log-uniform)", p.label));
   return p;
 }
 
@@ -189,6 +249,8 @@ void read_methods(Sens& s, const TableReader& top) {
     s.levels = static_cast<int>(r.integer("levels", 2, 1000, 4));
     s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, std::numeric_limits<std::int64_t>::max(), 1));
     if (s.levels % 2 != 0) r.fail("levels", "expected an even number of levels (4, 6, 8)");
+    s.morris_resamples = static_cast<std::size_t>(r.integer("bootstrap", 1, 1'000'000, 1000));
+    s.morris_confidence = r.number_in("confidence", 0.0, 1.0, 0.95, true, true);
     r.finish();
   }
   if (const toml::table* t = top.table("sobol")) {
@@ -196,6 +258,16 @@ void read_methods(Sens& s, const TableReader& top) {
     s.samples = static_cast<std::size_t>(r.integer("samples", 1, kMaxSize, 256));
     s.resamples = static_cast<std::size_t>(r.integer("bootstrap", 1, 1'000'000, 1000));
     s.confidence = r.number_in("confidence", 0.0, 1.0, 0.95, true, true);
+    s.sobol_seed = static_cast<std::uint64_t>(r.integer("seed", 1, std::numeric_limits<std::int64_t>::max(), 1));
+    s.second_order = r.boolean("second_order", false);
+    if (r.has("second_order_tolerance")) {
+      if (!s.second_order) r.fail("second_order_tolerance", "needs second_order = true");
+      if (!s.function) r.fail("second_order_tolerance", "only for a test function (its exact S_ij are the reference)");
+      s.second_order_tolerance = r.number_in("second_order_tolerance", 0.0, 1.0, 0.05, false, true);
+      s.second_order_reason = r.string("second_order_reason");
+    } else if (r.has("second_order_reason")) {
+      r.fail("second_order_reason", "belongs to second_order_tolerance");
+    }
     r.mark("convergence");
     if (const toml::node* cn = r.node("convergence")) {
       const toml::array* c = cn->as_array();
@@ -357,7 +429,7 @@ nlohmann::json setup_of(const Sens& s, std::size_t runs, int failed, double dt_f
   setup["failed runs"] = failed;
   for (const auto& p : s.params)
     setup["range of " + p.label] = fmt::format("{} = {} … {} ({})", p.path.empty() ? p.label : p.path, num(p.low), num(p.high),
-                                               p.log_uniform ? "log-uniform" : p.integer ? "integers, uniform" : "uniform");
+                                               p.integer ? "integers, uniform" : sens::distribution_name(p.distribution));
   if (s.function) setup["function"] = s.function->name;
   if (!s.replicates.empty()) {
     std::string list;

@@ -182,8 +182,30 @@ double normal_quantile(double p) {
   return 0.5 * (lo + hi);
 }
 
+namespace {
+
+struct EffectStats {
+  double mu, mu_star, sigma;
+};
+
+EffectStats effect_stats(const std::vector<double>& ee) {
+  const double n = static_cast<double>(ee.size());
+  double mu = 0.0, mu_star = 0.0;
+  for (double e : ee) {
+    mu += e;
+    mu_star += std::abs(e);
+  }
+  mu = n > 0 ? mu / n : std::nan("");
+  mu_star = n > 0 ? mu_star / n : std::nan("");
+  double var = 0.0;
+  for (double e : ee) var += (e - mu) * (e - mu);
+  return {mu, mu_star, n > 1 ? std::sqrt(var / (n - 1.0)) : std::nan("")};
+}
+
+}  // namespace
+
 MorrisEffects morris_effects(const std::vector<MorrisTrajectory>& tr, const std::vector<std::vector<double>>& f,
-                             std::size_t d) {
+                             std::size_t d, std::size_t resamples, double confidence, std::uint64_t seed) {
   if (f.size() != tr.size()) throw std::invalid_argument("morris_effects: one output row per trajectory");
   std::vector<std::vector<double>> ee(d);
   for (std::size_t t = 0; t < tr.size(); ++t) {
@@ -196,21 +218,35 @@ MorrisEffects morris_effects(const std::vector<MorrisTrajectory>& tr, const std:
     }
   }
   MorrisEffects m;
+  std::mt19937_64 rng(seed);
+  const double lo = 0.5 * (1.0 - confidence), hi = 1.0 - lo;
+  const double z = normal_quantile(hi);
   for (std::size_t i = 0; i < d; ++i) {
-    const double n = static_cast<double>(ee[i].size());
-    double mu = 0.0, mu_star = 0.0;
-    for (double e : ee[i]) {
-      mu += e;
-      mu_star += std::abs(e);
-    }
-    mu = n > 0 ? mu / n : std::nan("");
-    mu_star = n > 0 ? mu_star / n : std::nan("");
-    double var = 0.0;
-    for (double e : ee[i]) var += (e - mu) * (e - mu);
-    m.mu.push_back(mu);
-    m.mu_star.push_back(mu_star);
-    m.sigma.push_back(n > 1 ? std::sqrt(var / (n - 1.0)) : std::nan(""));
+    const EffectStats st = effect_stats(ee[i]);
+    m.mu.push_back(st.mu);
+    m.mu_star.push_back(st.mu_star);
+    m.sigma.push_back(st.sigma);
     m.effects.push_back(ee[i].size());
+    std::vector<double> b_mu, b_star, b_sigma, sample(ee[i].size());
+    for (std::size_t b = 0; b < resamples && !ee[i].empty(); ++b) {
+      for (auto& e : sample) e = ee[i][static_cast<std::size_t>(rng() % ee[i].size())];
+      const EffectStats q = effect_stats(sample);
+      b_mu.push_back(q.mu);
+      b_star.push_back(q.mu_star);
+      b_sigma.push_back(q.sigma);
+    }
+    auto interval = [&](double est, const std::vector<double>& boot) -> Interval {
+      if (boot.empty() || !std::isfinite(est)) return {est, est, est};
+      return {est, quantile(boot, lo), quantile(boot, hi)};
+    };
+    m.mu_ci.push_back(interval(st.mu, b_mu));
+    m.mu_star_ci.push_back(interval(st.mu_star, b_star));
+    m.sigma_ci.push_back(ee[i].size() > 1 ? interval(st.sigma, b_sigma) : Interval{st.sigma, st.sigma, st.sigma});
+    double sm = 0.0, s2 = 0.0;
+    for (double x : b_star) sm += x;
+    sm = b_star.empty() ? 0.0 : sm / static_cast<double>(b_star.size());
+    for (double x : b_star) s2 += (x - sm) * (x - sm);
+    m.mu_star_conf.push_back(b_star.size() > 1 ? z * std::sqrt(s2 / static_cast<double>(b_star.size() - 1)) : 0.0);
   }
   return m;
 }

@@ -24,6 +24,9 @@ double evaluate(const TestFunction& f, const std::vector<double>& x);
 struct ExactIndices {
   std::vector<double> first, total;
   std::vector<double> morris_mu_star, morris_sigma;  // linear only
+  /// second[i][j] (i < j): the closed second-order index S_ij = V_ij / V (Ishigami: only S_13 =
+  /// 8 b² π⁸ / 225 / V; g: V_i V_j / V; linear: 0). Empty where unknown (ln f).
+  std::vector<std::vector<double>> second;
 };
 ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low, const std::vector<double>& high);
 

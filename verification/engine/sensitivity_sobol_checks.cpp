@@ -15,13 +15,13 @@ namespace ver::sens {
 
 DesignOutputs function_on_design(const Sens& s, std::size_t n, Transform transform) {
   const std::size_t d = s.params.size();
-  const SaltelliDesign des = saltelli_design(n, d);
+  const SaltelliDesign des = saltelli_design(n, d, s.sobol_seed);
   auto f = [&](const std::vector<double>& u) {
     std::vector<double> x;
     for (std::size_t i = 0; i < d; ++i) x.push_back(value_at(s.params[i], u[i]));
     return evaluate(*s.function, x);
   };
-  DesignOutputs y{std::vector<double>(n), std::vector<double>(n), std::vector<std::vector<double>>(d, std::vector<double>(n))};
+  DesignOutputs y{std::vector<double>(n), std::vector<double>(n), std::vector<std::vector<double>>(d, std::vector<double>(n)), {}};
   for (std::size_t j = 0; j < n; ++j) {
     y.fa[j] = f(des.a[j]);
     y.fb[j] = f(des.b[j]);
