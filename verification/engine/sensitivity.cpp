@@ -20,6 +20,7 @@
 #include "dem/run/run.hpp"
 #include "engine/progress.hpp"
 #include "engine/run_cache.hpp"
+#include "engine/sensitivity_names.hpp"
 #include "engine/sensitivity_study.hpp"
 #include "engine/study_file.hpp"
 
@@ -183,6 +184,7 @@ void read_distribution(const Sens& s, const TableReader& r, const toml::node& n,
       if (!(p.levels[k] > p.levels[k - 1])) r.fail_at(*ln, "levels", "expected increasing values");
   }
   p.angle = first && first->dim == dem::dims::angle;
+  if (first) p.unit = sens::ascii_unit(dem::to_string(first->dim));
   p.mean = v.count("mean") ? v["mean"] : 0.0;
   p.sd = v.count("sd") ? v["sd"] : 1.0;
   p.mode = v.count("mode") ? v["mode"] : 0.0;
@@ -212,6 +214,11 @@ Parameter read_parameter(const Sens& s, const TableReader& r, const toml::node& 
   if (p.path.empty() && !s.function) r.fail_at(n, "path", "missing: the --set path, e.g. contact.0.kn");
   if (!p.path.empty() && s.function) r.fail("path", "a test function's inputs have no case path: remove path");
   p.label = r.string("label", p.path.empty() ? fmt::format("x{}", s.params.size() + 1) : p.path);
+  p.name = r.string("name", sens::ascii_name(p.label));
+  if (p.name.empty() || p.name != sens::ascii_name(p.name))
+    r.fail("name", fmt::format("expected an ASCII identifier (letters, digits, _), e.g. \"{}\"", sens::ascii_name(p.name)));
+  for (const Parameter& q : s.params)
+    if (q.name == p.name) r.fail_at(n, "name", fmt::format("\"{}\" names two parameters; give one of them name = \"...\"", p.name));
   read_distribution(s, r, n, p);
   p.integer = r.boolean("integer", false);
   r.mark("also");
@@ -330,6 +337,11 @@ void cross_check(const Sens& s, const toml::table& st, const toml::node* pn) {
       if (path == "numerics.dt" && (s.dt_fraction || s.dt_fraction_base))
         fail_at(s, st.get("replicates"), "sensitivity.replicates", "Δt follows the guard's limit (dt_fraction): a replicate may not set it");
     }
+  if (s.function && s.function->name != "linear")  // exact indices known for uniform inputs only
+    for (const Parameter& p : s.params)
+      if (p.distribution != sens::Distribution::uniform)
+        fail_at(s, pn, "parameter", fmt::format("\"{}\": the exact indices of {} are for uniform inputs; other distributions with the linear function only",
+                                                p.label, s.function->name));
   if (s.function && sens::dimension(*s.function) != s.params.size())
     fail_at(s, pn, "parameter", fmt::format("the function {} takes {} inputs, {} parameters given", s.function->name,
                                             sens::dimension(*s.function), s.params.size()));
@@ -413,7 +425,23 @@ sens::ExactIndices exact_of(const Sens& s) {
       lo.push_back(p.low);
       hi.push_back(p.high);
     }
-    exact = sens::exact_indices(*s.function, lo, hi);
+    // Inputs not uniform (linear only, cross_check): Var x_i = ∫₀¹ (Q(u) − mean)² du by the midpoint
+    // rule on 2^18 cells (the quantile functions are tested against closed forms in the unit tests).
+    std::vector<double> variances;
+    bool uniform = true;
+    for (const auto& p : s.params) uniform = uniform && p.distribution == sens::Distribution::uniform && !p.integer;
+    if (!uniform)
+      for (const auto& p : s.params) {
+        constexpr std::size_t cells = std::size_t{1} << 18;
+        double m = 0.0, m2 = 0.0;
+        for (std::size_t k = 0; k < cells; ++k) {
+          const double x = sens::value_at(p, (static_cast<double>(k) + 0.5) / static_cast<double>(cells));
+          m += x / cells;
+          m2 += x * x / cells;
+        }
+        variances.push_back(m2 - m * m);
+      }
+    exact = sens::exact_indices(*s.function, lo, hi, variances);
   }
   return exact;
 }
@@ -469,6 +497,76 @@ void print_summary(const Sens& s, const sens::Analysis& an, std::size_t runs, in
 
 }  // namespace
 
+namespace {
+
+/// How the study's runs came about (result.json's provenance).
+struct RunStats {
+  int reused = 0, ran = 0, duplicates = 0;
+  double dt_fraction = 0.0;
+  std::string command;
+};
+
+/// indices.csv with the ASCII `name` column beside `parameter` (a pair "a:b" → "a_name:b_name").
+std::string with_names(const Sens& s, const std::string& csv) {
+  std::map<std::string, std::string> name;
+  for (const auto& p : s.params) name["\"" + p.label + "\""] = p.name;
+  for (const auto& p : s.params)
+    for (const auto& q : s.params) name["\"" + p.label + ":" + q.label + "\""] = p.name + ":" + q.name;
+  std::istringstream in(csv);
+  std::string line, out;
+  std::getline(in, line);
+  out += "method,output,parameter,name,index,estimate,low,high,exact\n";
+  while (std::getline(in, line)) {
+    const std::size_t q0 = line.find('"'), q1 = q0 == std::string::npos ? q0 : line.find('"', q0 + 1);
+    const std::string label = q1 == std::string::npos ? std::string() : line.substr(q0, q1 - q0 + 1);
+    const auto it = name.find(label);
+    if (it == name.end()) throw std::logic_error("indices.csv: no ASCII name for " + label);
+    out += line.substr(0, q1 + 1) + "," + it->second + line.substr(q1 + 1) + "\n";
+  }
+  return out;
+}
+
+/// The analysis of a planned design whose runs carry their outputs: indices.csv, runs.csv, result.json.
+StudyResult analyse_and_write(const Sens& s, const sens::Plan& plan, const fs::path& file, const fs::path& out, const StudyOptions& opt,
+                              std::chrono::steady_clock::time_point started, const RunStats& stats) {
+  const bool derived_dt = stats.dt_fraction > 0.0;
+  const sens::RunTable run_table = sens::write_runs_csv(s, plan.runs, derived_dt, out / "runs.csv");
+
+  sens::Analysis an{s};
+  an.idx_csv << "method,output,parameter,index,estimate,low,high,exact\n";
+  const sens::ExactIndices exact = exact_of(s);
+  if (s.oat) sens::analyse_oat(plan, an);
+  if (s.morris) sens::analyse_morris(plan, exact, an);
+  if (s.sobol) sens::analyse_sobol(plan, exact, an);
+  dem::write_file_atomic(out / "indices.csv", with_names(s, an.idx_csv.str()), false);
+  sens::report_runs(run_table, derived_dt, an);
+
+  nlohmann::json prov = dem::provenance();
+  prov["overrides"] = s.set;
+  prov["runs_reused"] = stats.reused;
+  prov["runs_run"] = stats.ran;
+  prov["runs_duplicate"] = stats.duplicates;  // same overrides as another run of the study: its result shared
+  std::string params;
+  for (const auto& p : s.params) params += (params.empty() ? "" : ", ") + p.label;
+  nlohmann::json result = {
+      {"study", s.name}, {"title", s.title}, {"requirement", s.requirement}, {"kind", "sensitivity"},
+      {"case", s.function ? "test function " + s.function->name : s.case_path}, {"parameter", params},
+      {"reference", s.function ? "exact indices of the test function (sensitivity_functions.hpp)" : "none: a sensitivity study"},
+      {"setup", setup_of(s, plan.runs.size(), run_table.failed, stats.dt_fraction)}, {"provenance", prov}, {"passed", an.passed},
+      {"checks", an.checks}, {"series", an.series}, {"figures", an.figures}, {"tables", an.tables}};
+  result["provenance"]["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  result["provenance"]["command"] = stats.command;
+  // The study's README (purpose, findings, known limits) travels with the result: the report shows it.
+  if (const fs::path readme = fs::absolute(file).parent_path() / "README.md"; fs::exists(readme))
+    result["readme"] = dem::read_file(readme);
+  dem::write_file_atomic(out / "result.json", result.dump(2) + "\n");
+
+  if (opt.print) print_summary(s, an, plan.runs.size(), run_table.failed, stats.reused, out / "result.json");
+  return {an.passed, result};
+}
+
+}  // namespace
+
 StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
   const auto started = std::chrono::steady_clock::now();
   const Sens s = read_sens(file);
@@ -487,41 +585,36 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
   });
   progress.close();
   fs::remove(out / "running.json");
-  const bool derived_dt = runner.dt_fraction > 0.0;
-  const sens::RunTable run_table = sens::write_runs_csv(s, plan.runs, derived_dt, out / "runs.csv");
+  const RunStats stats{runner.reused.load(), runner.ran.load(), runner.duplicates, runner.dt_fraction,
+                       fmt::format("dem2d sweep {} --out {} --jobs {}{}", file.string(), out.string(), opt.jobs, opt.use_cache ? "" : " --fresh")};
+  return analyse_and_write(s, plan, file, out, opt, started, stats);
+}
 
-  sens::Analysis an{s};
-  an.idx_csv << "method,output,parameter,index,estimate,low,high,exact\n";
-  const sens::ExactIndices exact = exact_of(s);
-  if (s.oat) sens::analyse_oat(plan, an);
-  if (s.morris) sens::analyse_morris(plan, exact, an);
-  if (s.sobol) sens::analyse_sobol(plan, exact, an);
-  dem::write_file_atomic(out / "indices.csv", an.idx_csv.str(), false);
-  sens::report_runs(run_table, derived_dt, an);
+StudyResult analyse_sensitivity(const fs::path& file, const fs::path& outputs_csv, const StudyOptions& opt) {
+  const auto started = std::chrono::steady_clock::now();
+  const Sens s = read_sens(file);
+  if (!s.replicates.empty()) throw dem::CaseError(fmt::format("{}: replicates: analyse reads one output per run; give the replicates' means", file.string()));
+  sens::Plan plan = sens::plan_runs(s);
+  sens::read_outputs_csv(s, outputs_csv, plan.runs);
+  const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
+  fs::create_directories(out);
+  const RunStats stats{0, 0, 0, 0.0, fmt::format("dem2d analyse {} --outputs {} --out {}", file.string(), outputs_csv.string(), out.string())};
+  return analyse_and_write(s, plan, file, out, opt, started, stats);
+}
 
-  nlohmann::json prov = dem::provenance();
-  prov["overrides"] = s.set;
-  prov["runs_reused"] = runner.reused.load();
-  prov["runs_run"] = runner.ran.load();
-  prov["runs_duplicate"] = runner.duplicates;  // same overrides as another run of the study: its result shared
-  std::string params;
-  for (const auto& p : s.params) params += (params.empty() ? "" : ", ") + p.label;
-  nlohmann::json result = {
-      {"study", s.name}, {"title", s.title}, {"requirement", s.requirement}, {"kind", "sensitivity"},
-      {"case", s.function ? "test function " + s.function->name : s.case_path}, {"parameter", params},
-      {"reference", s.function ? "exact indices of the test function (sensitivity_functions.hpp)" : "none: a sensitivity study"},
-      {"setup", setup_of(s, plan.runs.size(), run_table.failed, runner.dt_fraction)}, {"provenance", prov}, {"passed", an.passed},
-      {"checks", an.checks}, {"series", an.series}, {"figures", an.figures}, {"tables", an.tables}};
-  result["provenance"]["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  result["provenance"]["command"] = fmt::format("dem2d sweep {} --out {} --jobs {}{}", file.string(), out.string(), opt.jobs,
-                                                opt.use_cache ? "" : " --fresh");
-  // The study's README (purpose, findings, known limits) travels with the result: the report shows it.
-  if (const fs::path readme = fs::absolute(file).parent_path() / "README.md"; fs::exists(readme))
-    result["readme"] = dem::read_file(readme);
-  dem::write_file_atomic(out / "result.json", result.dump(2) + "\n");
-
-  if (opt.print) print_summary(s, an, plan.runs.size(), run_table.failed, runner.reused.load(), out / "result.json");
-  return {an.passed, result};
+void write_sensitivity_design(const fs::path& file, const StudyOptions& opt) {
+  const Sens s = read_sens(file);
+  if (!s.replicates.empty()) throw dem::CaseError(fmt::format("{}: replicates: --design-only writes one row per run, without replicates", file.string()));
+  if (s.dt_fraction || s.dt_fraction_base)
+    throw dem::CaseError(fmt::format("{}: dt_fraction: --design-only cannot derive each run's Δt from the guard; give numerics.dt instead", file.string()));
+  sens::check_ranges(s);
+  const sens::Plan plan = sens::plan_runs(s);
+  const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
+  fs::create_directories(out);
+  sens::write_design_csv(s, plan.runs, out / "design.csv");
+  if (opt.print)
+    fmt::print("sensitivity {}: design of {} runs written to {}\n  run them anywhere, then: dem2d analyse {} --outputs OUTPUTS.csv\n", s.name,
+               plan.runs.size(), (out / "design.csv").string(), file.string());
 }
 
 }  // namespace ver

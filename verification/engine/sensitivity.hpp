@@ -17,4 +17,13 @@ namespace ver {
 /// and StudyInterrupted for SIGINT / SIGTERM.
 StudyResult run_sensitivity(const std::filesystem::path& study_file, const StudyOptions& opt);
 
+/// `dem2d sweep STUDY --design-only`: writes <out>/design.csv (run, method, each parameter's value in SI
+/// with its ASCII name and unit in the header) and runs nothing (sensitivity_design_io.cpp).
+void write_sensitivity_design(const std::filesystem::path& study_file, const StudyOptions& opt);
+
+/// `dem2d analyse STUDY --outputs OUTPUTS.csv`: the outputs of the design's runs computed anywhere (a
+/// `run` column and one column per output, named as in the study; blank = a failed run), analysed as
+/// `dem2d sweep` would: the same indices.csv, runs.csv and result.json in <out>.
+StudyResult analyse_sensitivity(const std::filesystem::path& study_file, const std::filesystem::path& outputs_csv, const StudyOptions& opt);
+
 }  // namespace ver

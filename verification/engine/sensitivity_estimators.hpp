@@ -51,7 +51,7 @@ struct SobolAsymptoticSd {
 SobolAsymptoticSd sobol_asymptotic_sd(const std::vector<double>& fa, const std::vector<double>& fb,
                                       const std::vector<std::vector<double>>& fab);
 
-/// The standard normal quantile z with Φ(z) = p (0 < p < 1), to 1e-9 (bisection on std::erfc).
+/// The standard normal quantile z with Φ(z) = p (0 < p < 1): Acklam's approximation and one Halley step (round-off).
 double normal_quantile(double p);
 
 struct MorrisEffects {

@@ -28,7 +28,8 @@ double evaluate(const TestFunction& f, const std::vector<double>& x) {
   return y;
 }
 
-ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low, const std::vector<double>& high) {
+ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low, const std::vector<double>& high,
+                           const std::vector<double>& variances) {
   ExactIndices e;
   const std::size_t d = dimension(f);
   if (f.name == "ishigami") {
@@ -62,8 +63,9 @@ ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low
     std::vector<double> vi(d);
     for (std::size_t i = 0; i < d; ++i) {
       const double w = high.at(i) - low.at(i);
-      vi[i] = f.coefficients[i] * f.coefficients[i] * w * w / 12.0;
+      vi[i] = f.coefficients[i] * f.coefficients[i] * (variances.empty() ? w * w / 12.0 : variances.at(i));
       var += vi[i];
+      if (!variances.empty()) continue;  // not uniform: the elementary effects vary
       e.morris_mu_star.push_back(std::abs(f.coefficients[i]) * w);
       e.morris_sigma.push_back(0.0);
     }

@@ -31,6 +31,8 @@ enum class Distribution { uniform, log_uniform, normal, truncated_normal, triang
 struct Parameter {
   std::string path;          // e.g. contact.0.kn
   std::string label;         // e.g. K_n
+  std::string name;          // ASCII, for CSV headers (sensitivity_names.hpp): [[parameter]] name, or from the label
+  std::string unit = "1";    // the SI unit of its values, ASCII ("m", "kg/s^2", "rad"; "1": a plain number)
   double low = 0.0, high = 1.0;  // the support (normal, log-normal, levels: the values at u = 0 and 1)
   bool log_uniform = false;  // uniform in ln x
   Distribution distribution = Distribution::uniform;  // log_uniform above mirrors Distribution::log_uniform

@@ -118,6 +118,17 @@ struct Runner {
 /// The Δt fraction of the study's runs (0: each run keeps its case's Δt).
 double dt_fraction_of(const Sens& s);
 
+// ---- sample and analyse apart (sensitivity_design_io.cpp) ----
+
+/// design.csv: run, method, then each parameter's value (17 digits, SI; blank = the base case's), the
+/// header naming each by its ASCII name and unit ("dt [s]").
+void write_design_csv(const Sens& s, const std::vector<Run>& runs, const std::filesystem::path& file);
+
+/// Reads an outputs file (CSV: a `run` column 0 … n−1, one column per output of the study; other
+/// columns ignored; blank, "nan" or a missing row = a failed run) into the runs' outputs and status.
+/// Throws dem::CaseError (file:line: what) for anything else.
+void read_outputs_csv(const Sens& s, const std::filesystem::path& file, std::vector<Run>& runs);
+
 /// The table of every run (runs.csv, and its rows for result.json) and how many failed.
 struct RunTable {
   nlohmann::json rows = nlohmann::json::array();
@@ -159,7 +170,8 @@ struct DesignOutputs {
   std::vector<double> fa, fb;
   std::vector<std::vector<double>> fab, fba;  // fba: second order only
 };
-DesignOutputs function_on_design(const Sens& s, std::size_t n, Transform transform);
+/// scramble: the Owen scrambling's seed (0: the study's own).
+DesignOutputs function_on_design(const Sens& s, std::size_t n, Transform transform, std::uint64_t scramble = 0);
 
 /// Test functions: the bootstrap interval's width against the central limit theorem.
 void check_interval_widths(const SobolIndices& si, Transform transform, const std::string& tsuffix, Analysis& an);
