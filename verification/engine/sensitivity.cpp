@@ -510,6 +510,7 @@ struct RunStats {
 std::string with_names(const Sens& s, const std::string& csv) {
   std::map<std::string, std::string> name;
   for (const auto& p : s.params) name["\"" + p.label + "\""] = p.name;
+  name["\"dummy\""] = "dummy";  // the Sobol' noise floor (sensitivity_sobol.cpp)
   for (const auto& p : s.params)
     for (const auto& q : s.params) name["\"" + p.label + ":" + q.label + "\""] = p.name + ":" + q.name;
   std::istringstream in(csv);

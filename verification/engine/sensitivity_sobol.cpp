@@ -57,6 +57,24 @@ void index_rows(const SobolIndices& si, const ExactIndices& exact_sobol, const s
   }
 }
 
+/// The noise floor, at no cost: Janon's first order of an inert dummy input, whose AB_dummy is A
+/// itself (Y = f(B), Y^dummy = f(A): independent points, exact index 0). Saltelli's S and Jansen's S_T
+/// of such an input are exactly 0 (f(AB) − f(A) = 0 row by row), so only Janon's carries noise; an
+/// index whose interval does not clear the dummy's is not resolved at this N.
+void dummy_row(const DesignOutputs& y, const std::string& yname, const std::string& tsuffix, nlohmann::json& rows, Analysis& an) {
+  const Sens& s = an.s;
+  const SobolIndices sd = sobol_indices(y.fa, y.fb, {y.fa}, s.resamples, s.confidence);
+  const Interval& j = sd.first_janon[0];
+  rows.push_back({yname, "dummy (inert: noise floor)", "0", "[0, 0]", "0", "[0, 0]", s.function ? "0" : "", s.function ? "0" : "",
+                  num(j.estimate), fmt::format("[{}, {}]", num(j.low), num(j.high))});
+  an.idx_csv << "sobol," << yname << ",\"dummy\",S_janon," << fmt::format("{:.17g},{:.17g},{:.17g},0", j.estimate, j.low, j.high) << "\n";
+  if (s.function)
+    an.add_check(fmt::format("S_janon of the inert dummy ({}, N = {}{})", s.function->name, s.samples, tsuffix), 0.0, j.estimate,
+                 std::abs(j.estimate), j.estimate > 0.0 ? j.estimate - j.low : j.high - j.estimate,
+                 fmt::format("the {:.0f} % bootstrap interval must contain 0, the exact index of an input without effect", 100.0 * s.confidence),
+                 j.low <= 0.0 && j.high >= 0.0, fmt::format("interval [{}, {}]", num(j.low), num(j.high)));
+}
+
 nlohmann::json jv(const std::vector<double>& v) {
   nlohmann::json a = nlohmann::json::array();
   for (double x : v) a.push_back(jnum(x));
@@ -133,6 +151,7 @@ void analyse_transform(const Plan& plan, const ExactIndices& exact, Transform tr
     const SobolIndices si = sobol_indices(y.fa, y.fb, y.fab, s.resamples, s.confidence);
     if (s.function && s.resamples >= 100) check_interval_widths(si, transform, tsuffix, an);
     index_rows(si, exact_sobol, yname, tsuffix, rows, an);
+    dummy_row(y, yname, tsuffix, rows, an);
     an.figures.push_back(index_figure(s, si, exact_sobol, yname, transform, o));
     if (s.second_order) second_order_rows(y, exact_sobol, yname, tsuffix, rows2, an);
   }
