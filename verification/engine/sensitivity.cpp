@@ -161,14 +161,17 @@ void read_distribution(const Sens& s, const TableReader& r, const toml::node& n,
         !(p.distribution == Distribution::log_normal && std::string(k) == "sigma_ln") && !(p.distribution == Distribution::levels && std::string(k) == "levels"))
       r.fail(k, fmt::format("a {} distribution does not take {}", name, k));
   std::optional<dem::Quantity> first;
+  std::string first_key;
   std::map<std::string, double> v;
+  std::vector<std::pair<const char*, const toml::node*>> on_case;  // tried on the case key once all units agree
   auto quantity = [&](const char* key, const toml::node& at) {
     r.mark(key);
     const dem::Quantity q = r.any_quantity_of(at, key);
     if (first && !(q.dim == first->dim))
-      r.fail_at(at, key, fmt::format("{} but the first value is {}: give all in one kind of unit", dem::to_string(q.dim), dem::to_string(first->dim)));
-    if (!first) first = q;
-    if (std::string(key) != "sd") check_against_case(s, r, p, key, &at);
+      r.fail_at(at, key, fmt::format("{} is {}, {} is {}: give all in one kind of unit", first_key, dem::to_string(first->dim), key,
+                                     dem::to_string(q.dim)));
+    if (!first) first = q, first_key = key;
+    if (std::string(key) != "sd") on_case.emplace_back(key, &at);
     return q.value;
   };
   for (const char* k : keys) {
@@ -183,6 +186,7 @@ void read_distribution(const Sens& s, const TableReader& r, const toml::node& n,
     for (std::size_t k = 1; k < p.levels.size(); ++k)
       if (!(p.levels[k] > p.levels[k - 1])) r.fail_at(*ln, "levels", "expected increasing values");
   }
+  for (const auto& [key, at] : on_case) check_against_case(s, r, p, key, at);
   p.angle = first && first->dim == dem::dims::angle;
   if (first) p.unit = sens::ascii_unit(dem::to_string(first->dim));
   p.mean = v.count("mean") ? v["mean"] : 0.0;

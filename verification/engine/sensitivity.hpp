@@ -1,9 +1,10 @@
 #pragma once
 // Parameter sensitivity studies (`dem2d sweep STUDY`): a base case (or a test function with known
-// indices), uncertain parameters with ranges (any `--set` path; uniform or log-uniform), outputs
-// (probes of the case's summary) and methods: one-at-a-time sweeps, Morris elementary effects,
-// Sobol' first-order and total indices (Saltelli sampling on a Sobol' sequence, Saltelli 2010 and
-// Jansen estimators, bootstrap intervals). Runs go in parallel through the DEM core with a run cache
+// indices), uncertain parameters (any `--set` path; uniform, log-uniform, normal, truncated normal,
+// triangular, log-normal or discrete levels), outputs (probes of the case's summary) and methods:
+// one-at-a-time sweeps, Morris elementary effects (bootstrap intervals of μ*, μ, σ), Sobol' first-order,
+// total and optionally second-order indices (Saltelli sampling on an Owen-scrambled Sobol' sequence,
+// Saltelli 2010, Janon 2014, Jansen and Saltelli 2002 estimators, bootstrap intervals). Runs go in parallel through the DEM core with a run cache
 // in <out>/cache (resumable like `dem2d study`); failed runs (blow-up, refused by the time-step
 // guard) are recorded, not fatal. Writes runs.csv, indices.csv and result.json (RESULT_FORMAT.md).
 // The file format is documented in verification/README.md ("Sensitivity studies").
