@@ -5,6 +5,8 @@
 //   dem2d check CASE [--set key=value]...                check a case and print what it resolves to
 //   dem2d study STUDY [--out DIR] [--jobs N] [--fresh] [-v]   run one verification study (verification/*/study.toml)
 //   dem2d sweep STUDY [--out DIR] [--jobs N] [--fresh] [-v]   run one sensitivity study (verification/sensitivity_*/sensitivity.toml)
+//   dem2d sweep STUDY --design-only [--out DIR]          write its design (design.csv), run nothing
+//   dem2d analyse STUDY --outputs FILE [--out DIR]       analyse outputs of that design computed anywhere
 //   dem2d report [--studies DIR] [--out DIR] [--claims FILE]   write the verification report from study results
 #include <algorithm>
 #include <cmath>
@@ -141,9 +143,11 @@ struct Cli {
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   bool fresh = false;
   bool verbose = false;  // study, sweep: a line per finished run
+  bool design_only = false;  // sweep: write design.csv only
+  std::string outputs_file;  // analyse: the outputs of the design's runs
   std::string studies_dir = "build/studies", report_dir = "build/report";
   std::string docs_dir, bench_dir, claims_file;
-  CLI::App *run = nullptr, *check = nullptr, *study = nullptr, *sweep = nullptr, *report = nullptr;
+  CLI::App *run = nullptr, *check = nullptr, *study = nullptr, *sweep = nullptr, *analyse = nullptr, *report = nullptr;
 };
 
 void add_run(CLI::App& app, Cli& o) {
@@ -200,6 +204,15 @@ void add_study_and_sweep(CLI::App& app, Cli& o) {
   sweep->add_flag("--fresh", o.fresh, "Clear the cache of finished runs in the study folder first");
   sweep->add_flag("-v,--verbose", o.verbose,
                   "A line per finished run on stderr (on a terminal a status line shows runs done, reused, time left)");
+  sweep->add_flag("--design-only", o.design_only,
+                  "Write the design (design.csv: each run's parameter values, SI, ASCII names and units) and run nothing; "
+                  "then `dem2d analyse`");
+  auto* analyse = o.analyse = app.add_subcommand(
+      "analyse", "Analyse a sensitivity study's design from outputs computed anywhere (see sweep --design-only): the same indices.csv and result.json");
+  analyse->add_option("study", o.study_file, "Sensitivity study file")->required()->check(CLI::ExistingFile);
+  analyse->add_option("--outputs", o.outputs_file, "CSV with a run column (0 … n−1, as design.csv) and one column per output of the study")
+      ->required()->check(CLI::ExistingFile);
+  analyse->add_option("--out", o.out_dir, "Output folder (default build/studies/<name>)");
 }
 
 void add_report(CLI::App& app, Cli& o) {
@@ -238,6 +251,10 @@ int cmd_study(const Cli& o, bool sweep) {
   so.jobs = o.jobs;
   so.use_cache = !o.fresh;
   so.verbose = o.verbose;
+  if (sweep && o.design_only) {
+    ver::write_sensitivity_design(o.study_file, so);
+    return 0;
+  }
   if (sweep) return ver::run_sensitivity(o.study_file, so).passed ? 0 : 1;
   const ver::StudyResult r = ver::run_study(o.study_file, so);
   return r.passed ? 0 : 1;
@@ -281,6 +298,11 @@ int dispatch(Cli& o, int argc, char** argv) {
     if (*o.check) return cmd_check(o.case_file, o.sets);
     if (*o.study) return cmd_study(o, false);
     if (*o.sweep) return cmd_study(o, true);
+    if (*o.analyse) {
+      ver::StudyOptions so;
+      so.out_dir = o.out_dir;
+      return ver::analyse_sensitivity(o.study_file, o.outputs_file, so).passed ? 0 : 1;
+    }
     if (*o.report) return cmd_report(o, argc, argv);
   } catch (const dem::CaseError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -82,6 +82,9 @@ std::vector<SensitivityOverviewRow> sensitivity_overview_rows(const ReportConten
       if (starts(title, "Sobol' indices")) rank = 0, value_col = 4, interval_col = 5;
       else if (starts(title, "Morris elementary effects")) rank = 1, value_col = 2;
       else if (starts(title, "One-at-a-time sweeps")) rank = 2, value_col = 5;
+      if (rank == 1 && table.contains("columns") && table["columns"].is_array() && table["columns"].size() > 3 &&
+          table["columns"][3].is_string() && table["columns"][3].get<std::string>().find("interval") != std::string::npos)
+        interval_col = 3;  // μ*'s bootstrap interval (results written before it had none)
       if (rank < 0) continue;
       for (const auto& row : array_field(table, "rows")) {
         if (!row.is_array() || row.size() <= std::max(value_col, interval_col)) continue;

@@ -2,6 +2,8 @@
 // same overrides are run once and the result goes to every run that has them.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -37,8 +39,8 @@ std::vector<std::vector<std::string>> csv_rows(const fs::path& p) {
 }  // namespace
 
 TEST_CASE("A Sobol design with repeated points runs each distinct point once and shares its result", "[sensitivity]") {
-  // The resting disk over two parameters, Saltelli's design with N = 8: 8 × (2 + 2) = 32 runs. Row 0 is
-  // the origin in A, B and both AB_i (4 runs, 1 distinct); the other repeats come from the sequence.
+  // The resting disk over two parameters, Saltelli's design with N = 8: 8 × (2 + 2) = 32 runs. The mass
+  // takes the integers 1 or 2 kg: wherever A and B agree in it, AB_1 repeats B and AB_2 repeats A.
   const fs::path root = test::fresh_dir("dem2d_unit_sweep", "duplicates");
   fs::create_directories(root / "verification" / "dup");
   fs::create_directories(root / "cases" / "basic");
@@ -47,13 +49,17 @@ TEST_CASE("A Sobol design with repeated points runs each distinct point once and
   std::ofstream(f) << "[sensitivity]\ntitle = \"duplicates\"\ncase = \"../../cases/basic/rest_on_wall.toml\"\n"
                       "outputs = [\"overlap\"]\nmethods = [\"sobol\"]\n"
                       "\n[[parameter]]\npath = \"contact.0.kn\"\nlabel = \"K\"\nlow = \"5e5 N/m\"\nhigh = \"4e6 N/m\"\n"
-                      "\n[[parameter]]\npath = \"element.0.mass\"\nlabel = \"m\"\nlow = \"0.5 kg\"\nhigh = \"2 kg\"\n"
+                      "\n[[parameter]]\npath = \"element.0.mass\"\nlabel = \"m\"\nlow = \"1 kg\"\nhigh = \"2 kg\"\ninteger = true\n"
                       "\n[sobol]\nsamples = 8\nbootstrap = 20\n";
   // The distinct points, counted from the design itself.
   const ver::sens::SaltelliDesign des = ver::sens::saltelli_design(8, 2);
-  std::set<std::vector<double>> distinct(des.a.begin(), des.a.end());
-  distinct.insert(des.b.begin(), des.b.end());
-  for (const auto& m : des.ab) distinct.insert(m.begin(), m.end());
+  std::set<std::vector<double>> distinct;  // (u of K, the mass in kg)
+  auto add = [&](const ver::sens::Matrix& m) {
+    for (const auto& u : m) distinct.insert({u[0], std::min(std::floor(u[1] * 2.0), 1.0) + 1.0});
+  };
+  add(des.a);
+  add(des.b);
+  for (const auto& m : des.ab) add(m);
   REQUIRE(distinct.size() < 32);  // the test needs repeats
 
   ver::StudyOptions o;

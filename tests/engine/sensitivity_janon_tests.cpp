@@ -20,9 +20,9 @@ struct Outputs {
   std::vector<std::vector<double>> fab;
 };
 
-Outputs evaluate_design(const TestFunction& f, double low, double high, std::size_t n) {
+Outputs evaluate_design(const TestFunction& f, double low, double high, std::size_t n, std::uint64_t scramble = 1) {
   const std::size_t d = dimension(f);
-  const SaltelliDesign des = saltelli_design(n, d);
+  const SaltelliDesign des = saltelli_design(n, d, scramble);
   auto eval = [&](const std::vector<double>& u) {
     std::vector<double> x;
     for (std::size_t i = 0; i < d; ++i) x.push_back(low + (high - low) * u[i]);
@@ -85,13 +85,20 @@ TEST_CASE("Janon first order: Ishigami and g-function indices inside the bootstr
 TEST_CASE("Janon first order: the Ishigami error falls faster than Monte Carlo as N doubles", "[sensitivity]") {
   std::vector<double> lx, ly;
   const ExactIndices ex = exact_indices(ishigami, {-pi, -pi, -pi}, {pi, pi, pi});
-  for (std::size_t n = 256; n <= 16384; n *= 2) {
-    const Outputs o = evaluate_design(ishigami, -pi, pi, n);
-    const SobolIndices s = sobol_indices(o.fa, o.fb, o.fab, 0);
-    double e = 0.0;
-    for (std::size_t i = 0; i < 3; ++i) e = std::max(e, std::abs(s.first_janon[i].estimate - ex.first[i]));
+  // Owen-scrambled: the error is random; its root mean square over 8 scramblings at each N, from
+  // N = 2^10 (below it the rate is pre-asymptotic: 0.028, 0.022, 0.017 at N = 256, 512, 1024;
+  // measured slope over 2^10 … 2^16 about 1.0).
+  for (std::size_t n = 1024; n <= 65536; n *= 2) {
+    double e2 = 0.0;
+    for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+      const Outputs o = evaluate_design(ishigami, -pi, pi, n, seed);
+      const SobolIndices s = sobol_indices(o.fa, o.fb, o.fab, 0);
+      double e = 0.0;
+      for (std::size_t i = 0; i < 3; ++i) e = std::max(e, std::abs(s.first_janon[i].estimate - ex.first[i]));
+      e2 += e * e / 8.0;
+    }
     lx.push_back(std::log(double(n)));
-    ly.push_back(std::log(e));
+    ly.push_back(0.5 * std::log(e2));
   }
   const double order = -test::least_squares_slope(lx, ly);
   INFO("fitted order " << order);

@@ -42,8 +42,9 @@ const char* morris_study = R"json({
   "tables": [
     { "title": "One-at-a-time sweeps: the output at both ends of each range", "columns": ["output", "parameter", "range", "at low", "at high", "max − min", "(max − min) / |base|"],
       "rows": [["peak", "c", "0 … 1", "1", "2", "5", "0.1"]] },
-    { "title": "Morris elementary effects (unit coordinates)", "columns": ["output", "parameter", "μ*", "μ", "σ", "effects", "exact μ*"],
-      "rows": [["peak", "c", "0.02", "0", "0", "10", ""], ["peak", "k_n", "300", "1", "1", "10", ""], ["peak", "φ", "1.5", "1", "1", "10", ""]] }
+    { "title": "Morris elementary effects (unit coordinates)", "columns": ["output", "parameter", "μ*", "95 % bootstrap interval", "μ*_conf (SALib)", "μ", "σ", "effects", "exact μ*"],
+      "rows": [["peak", "c", "0.02", "[0.01, 0.03]", "0.01", "0", "0", "10", ""], ["peak", "k_n", "300", "[250, 350]", "50", "1", "1", "10", ""],
+               ["peak", "φ", "1.5", "[1, 2]", "0.5", "1", "1", "10", ""]] }
   ] })json";
 
 }  // namespace
@@ -75,7 +76,7 @@ TEST_CASE("sensitivity overview: the strongest measure per output, most and leas
   CHECK(rows[3].most == "k_n");
   CHECK(rows[3].most_value == "300");
   CHECK(rows[3].least == "c");
-  CHECK(rows[3].most_interval == "—");
+  CHECK(rows[3].most_interval == "[250, 350]");  // μ*'s bootstrap interval
   CHECK(rows[3].runs == "71");
 }
 

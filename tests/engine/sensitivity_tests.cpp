@@ -68,9 +68,10 @@ std::vector<Parameter> unit_params(std::size_t d) { return std::vector<Parameter
 
 TEST_CASE("Sobol points: the first 2^m points stratify every axis and every pair of the first axes", "[sensitivity]") {
   const std::size_t m = 10, n = std::size_t{1} << m;
-  const Matrix p = sobol_points(n, 8);
+  const std::uint64_t scramble = GENERATE(kUnscrambled, std::uint64_t{1}, std::uint64_t{77});
+  const Matrix p = sobol_points(n, 8, scramble);
   REQUIRE(p.size() == n);
-  for (double x : p[0]) CHECK(x == 0.0);  // the origin, put back in front of GSL's sequence
+  for (double x : p[0]) CHECK((x == 0.0) == (scramble == kUnscrambled));  // raw: the origin, put back in front of GSL's sequence
   for (std::size_t k = 0; k < 8; ++k) {
     std::set<std::size_t> cells;
     for (const auto& row : p) {
@@ -84,10 +85,12 @@ TEST_CASE("Sobol points: the first 2^m points stratify every axis and every pair
   std::set<std::size_t> cells;
   for (const auto& row : p) cells.insert(static_cast<std::size_t>(row[0] * 32) * 32 + static_cast<std::size_t>(row[1] * 32));
   CHECK(cells.size() == n);
-  // Mean of x is 1/2 − 1/(2n) exactly (a net: the points are k/n, k = 0..n−1, on each axis).
+  // Raw: the mean of x is 1/2 − 1/(2n) exactly (a net: the points are k/n, k = 0..n−1, on each axis);
+  // scrambled: one point in each [k/n, (k+1)/n), so the mean is within 1/(2n) of 1/2.
   double mean = 0.0;
   for (const auto& row : p) mean += row[3];
-  CHECK(mean / n == Approx(0.5 - 0.5 / n).epsilon(1e-14));
+  if (scramble == kUnscrambled) CHECK(mean / n == Approx(0.5 - 0.5 / n).epsilon(1e-14));
+  else CHECK(std::abs(mean / n - 0.5) <= 0.5 / n);
   CHECK_THROWS(sobol_points(4, 41));
   CHECK_THROWS(sobol_points(4, 0));
 }

@@ -242,6 +242,23 @@ TEST_CASE("Mistakes in a sensitivity file are refused before any run", "[study_f
              StartsWith(sweep_line(9) + "parameter.high: low is"));
   CHECK_THAT(sens_refusal(sweep_planted("low = 0.1\nhigh = 0.9", "low = \"0.1 m\"\nhigh = \"0.9 m\"")),
              StartsWith(sweep_line(8) + "parameter.low: \"0.1 m\" cannot set contact.0.damping_ratio"));
+  // Distributions (issue 36): each takes its own keys, with units that agree, read strictly.
+  CHECK_THAT(sens_refusal(sweep_planted("low = 0.1\nhigh = 0.9", "distribution = \"normal\"\nmean = 0.5")),
+             Contains("parameter.sd: missing: a normal distribution takes mean, sd"));
+  CHECK_THAT(sens_refusal(sweep_planted("low = 0.1\nhigh = 0.9", "distribution = \"normal\"\nmean = 0.5\nsd = 0.1\nhigh = 0.9")),
+             Contains("parameter.high: a normal distribution does not take high"));
+  CHECK_THAT(sens_refusal(sweep_planted("low = 0.1\nhigh = 0.9", "distribution = \"triangular\"\nlow = 0.1\nmode = 0.95\nhigh = 0.9")),
+             Contains("parameter.mode: expected low <= mode <= high"));
+  CHECK_THAT(sens_refusal(sweep_planted("low = 0.1\nhigh = 0.9", "distribution = \"levels\"\nlevels = [0.5, 0.2]")),
+             Contains("parameter.levels: expected increasing values"));
+  CHECK_THAT(sens_refusal(sweep_planted("low = 0.1\nhigh = 0.9", "distribution = \"log-normal\"\nmedian = 0.5")),
+             Contains("sigma_ln"));
+  CHECK_THAT(sens_refusal(sweep_planted("low = 0.1\nhigh = 0.9", "distribution = \"levels\"\nlevels = [0.2, \"0.5 m\"]")),
+             Contains("give all in one kind of unit"));
+  CHECK_THAT(sens_refusal(sweep_planted("low = 0.1\nhigh = 0.9", "distribution = \"gauss\"\nlow = 0.1\nhigh = 0.9")),
+             Contains("parameter.distribution"));
+  CHECK_THAT(sens_refusal(sweep_planted("samples = 16", "samples = 16\nsecond_order_tolerance = 0.05")),
+             Contains("second_order_tolerance: needs second_order = true"));
   CHECK_THAT(sens_refusal(sweep_planted("methods = [\"sobol\"]", "methods = [\"sobl\"]")), Contains("did you mean \"sobol\"?"));
   CHECK_THAT(sens_refusal(sweep_planted("methods = [\"sobol\"]", "methods = [\"oat\"]")), Contains("sobol: [sobol] is given but methods does not list \"sobol\""));
   CHECK_THAT(sens_refusal(sweep_planted("samples = 16", "samples = 1099511627776")), StartsWith(sweep_line(15) + "sobol.samples: expected a whole number from 1 to 16777216"));

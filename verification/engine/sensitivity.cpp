@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <unistd.h>
 #include <toml++/toml.h>
@@ -18,6 +20,7 @@
 #include "dem/run/run.hpp"
 #include "engine/progress.hpp"
 #include "engine/run_cache.hpp"
+#include "engine/sensitivity_names.hpp"
 #include "engine/sensitivity_study.hpp"
 #include "engine/study_file.hpp"
 
@@ -123,9 +126,9 @@ void read_header(Sens& s, const TableReader& top) {
 
 /// The value of a parameter bound as written, checked against the case key it sets: the case reader
 /// reads the case with `path = <value as written>` and refuses a wrong unit ("1 m" for a damping ratio).
-void check_against_case(const Sens& s, const TableReader& r, const Parameter& p, const char* key) {
+void check_against_case(const Sens& s, const TableReader& r, const Parameter& p, const char* key, const toml::node* at = nullptr) {
   if (s.function || p.path.empty()) return;
-  const toml::node& n = *r.node(key);
+  const toml::node& n = at ? *at : *r.node(key);
   const std::string written = n.is_string() ? *n.value<std::string>() : fmt::format("{:.17g}", *n.value<double>());
   std::vector<std::string> sets = s.set;
   sets.push_back(p.path + "=" + written);
@@ -136,21 +139,91 @@ void check_against_case(const Sens& s, const TableReader& r, const Parameter& p,
   }
 }
 
+/// The distribution of a parameter and the keys it takes, each a quantity in one kind of unit:
+///   uniform, log-uniform: low, high;  normal: mean, sd;  truncated-normal: mean, sd, low, high;
+///   triangular: low, mode, high;  log-normal: median, sigma_ln (the sd of ln x, a plain number);
+///   levels: levels = [x_1, …, x_k] (k >= 2, increasing).
+void read_distribution(const Sens& s, const TableReader& r, const toml::node& n, Parameter& p) {
+  using sens::Distribution;
+  const std::vector<std::string> names = {"uniform", "log-uniform", "normal", "truncated-normal", "triangular", "log-normal", "levels"};
+  const std::string name = r.choice("distribution", names, "uniform");
+  p.distribution = static_cast<Distribution>(std::find(names.begin(), names.end(), name) - names.begin());
+  p.log_uniform = p.distribution == Distribution::log_uniform;
+  const std::vector<const char*> keys =
+      p.distribution == Distribution::normal ? std::vector<const char*>{"mean", "sd"}
+      : p.distribution == Distribution::truncated_normal ? std::vector<const char*>{"mean", "sd", "low", "high"}
+      : p.distribution == Distribution::triangular ? std::vector<const char*>{"low", "mode", "high"}
+      : p.distribution == Distribution::log_normal ? std::vector<const char*>{"median"}
+      : p.distribution == Distribution::levels ? std::vector<const char*>{}
+      : std::vector<const char*>{"low", "high"};
+  for (const char* k : {"low", "high", "mean", "sd", "mode", "median", "sigma_ln", "levels"})  // a key of another distribution
+    if (r.has(k) && std::find_if(keys.begin(), keys.end(), [&](const char* x) { return std::string(x) == k; }) == keys.end() &&
+        !(p.distribution == Distribution::log_normal && std::string(k) == "sigma_ln") && !(p.distribution == Distribution::levels && std::string(k) == "levels"))
+      r.fail(k, fmt::format("a {} distribution does not take {}", name, k));
+  std::optional<dem::Quantity> first;
+  std::string first_key;
+  std::map<std::string, double> v;
+  std::vector<std::pair<const char*, const toml::node*>> on_case;  // tried on the case key once all units agree
+  auto quantity = [&](const char* key, const toml::node& at) {
+    r.mark(key);
+    const dem::Quantity q = r.any_quantity_of(at, key);
+    if (first && !(q.dim == first->dim))
+      r.fail_at(at, key, fmt::format("{} is {}, {} is {}: give all in one kind of unit", first_key, dem::to_string(first->dim), key,
+                                     dem::to_string(q.dim)));
+    if (!first) first = q, first_key = key;
+    if (std::string(key) != "sd") on_case.emplace_back(key, &at);
+    return q.value;
+  };
+  for (const char* k : keys) {
+    if (!r.has(k)) r.fail_at(n, k, fmt::format("missing: a {} distribution takes {}", name, fmt::join(keys, ", ")));
+    v[k] = quantity(k, *r.node(k));
+  }
+  if (p.distribution == Distribution::levels) {
+    r.mark("levels");
+    const toml::node* ln = r.node("levels");
+    if (!ln || !ln->as_array() || ln->as_array()->size() < 2) r.fail_at(ln ? *ln : n, "levels", "expected an array of at least 2 values, e.g. [\"1 mm\", \"2 mm\"]");
+    for (const auto& x : *ln->as_array()) p.levels.push_back(quantity("levels", x));
+    for (std::size_t k = 1; k < p.levels.size(); ++k)
+      if (!(p.levels[k] > p.levels[k - 1])) r.fail_at(*ln, "levels", "expected increasing values");
+  }
+  for (const auto& [key, at] : on_case) check_against_case(s, r, p, key, at);
+  p.angle = first && first->dim == dem::dims::angle;
+  if (first) p.unit = sens::ascii_unit(dem::to_string(first->dim));
+  p.mean = v.count("mean") ? v["mean"] : 0.0;
+  p.sd = v.count("sd") ? v["sd"] : 1.0;
+  p.mode = v.count("mode") ? v["mode"] : 0.0;
+  if (v.count("low")) p.low = v["low"];
+  if (v.count("high")) p.high = v["high"];
+  if ((p.distribution == Distribution::normal || p.distribution == Distribution::truncated_normal) && !(p.sd > 0.0))
+    r.fail("sd", "expected sd > 0");
+  if (p.distribution == Distribution::log_normal) {
+    if (!(v["median"] > 0.0)) r.fail("median", "expected median > 0");
+    p.mean = std::log(v["median"]);
+    p.sd = r.number_in("sigma_ln", 0.0, 10.0, 0.0, true);
+    if (!r.has("sigma_ln")) r.fail_at(n, "sigma_ln", "missing: a log-normal distribution takes median and sigma_ln (the sd of ln x)");
+  }
+  if (p.distribution == Distribution::triangular && !(p.mode >= p.low && p.mode <= p.high)) r.fail("mode", "expected low <= mode <= high");
+  if (!keys.empty() && std::find(keys.begin(), keys.end(), std::string("low")) != keys.end() &&
+      (!(p.high > p.low) || (p.log_uniform && !(p.low > 0.0))))
+    r.fail_at(n, "low", fmt::format("\"{}\": need low < high (and low > 0 for log-uniform)", p.label));
+  if (p.distribution == Distribution::normal || p.distribution == Distribution::log_normal || p.distribution == Distribution::levels) {
+    p.low = sens::value_at(p, 0.0);  // the support's ends as the designs reach them
+    p.high = sens::value_at(p, 1.0);
+  }
+}
+
 Parameter read_parameter(const Sens& s, const TableReader& r, const toml::node& n) {
   Parameter p;
   p.path = r.string("path", "");
   if (p.path.empty() && !s.function) r.fail_at(n, "path", "missing: the --set path, e.g. contact.0.kn");
   if (!p.path.empty() && s.function) r.fail("path", "a test function's inputs have no case path: remove path");
   p.label = r.string("label", p.path.empty() ? fmt::format("x{}", s.params.size() + 1) : p.path);
-  const dem::Quantity low = r.any_quantity("low"), high = r.any_quantity("high");
-  if (!(low.dim == high.dim)) r.fail("high", fmt::format("low is {}, high is {}: give both in one kind of unit",
-                                                         dem::to_string(low.dim), dem::to_string(high.dim)));
-  p.low = low.value;
-  p.high = high.value;
-  p.angle = low.dim == dem::dims::angle;
-  check_against_case(s, r, p, "low");
-  check_against_case(s, r, p, "high");
-  p.log_uniform = r.choice("distribution", {"uniform", "log-uniform"}, "uniform") == "log-uniform";
+  p.name = r.string("name", sens::ascii_name(p.label));
+  if (p.name.empty() || p.name != sens::ascii_name(p.name))
+    r.fail("name", fmt::format("expected an ASCII identifier (letters, digits, _), e.g. \"{}\"", sens::ascii_name(p.name)));
+  for (const Parameter& q : s.params)
+    if (q.name == p.name) r.fail_at(n, "name", fmt::format("\"{}\" names two parameters; give one of them name = \"...\"", p.name));
+  read_distribution(s, r, n, p);
   p.integer = r.boolean("integer", false);
   r.mark("also");
   if (const toml::node* an = r.node("also")) {
@@ -168,10 +241,8 @@ Parameter read_parameter(const Sens& s, const TableReader& r, const toml::node& 
       p.also.push_back(fo);
     }
   }
-  if (p.integer && (p.log_uniform || p.low != std::floor(p.low) || p.high != std::floor(p.high)))
+  if (p.integer && (p.distribution != sens::Distribution::uniform || p.low != std::floor(p.low) || p.high != std::floor(p.high)))
     r.fail("integer", fmt::format("\"{}\": integer parameters need integer low and high, uniform", p.label));
-  if (!(p.high > p.low) || (p.log_uniform && !(p.low > 0.0)))
-    r.fail_at(n, "low", fmt::format("\"{}\": need low < high (and low > 0 for log-uniform)", p.label));
   return p;
 }
 
@@ -189,6 +260,8 @@ void read_methods(Sens& s, const TableReader& top) {
     s.levels = static_cast<int>(r.integer("levels", 2, 1000, 4));
     s.seed = static_cast<std::uint64_t>(r.integer("seed", 1, std::numeric_limits<std::int64_t>::max(), 1));
     if (s.levels % 2 != 0) r.fail("levels", "expected an even number of levels (4, 6, 8)");
+    s.morris_resamples = static_cast<std::size_t>(r.integer("bootstrap", 1, 1'000'000, 1000));
+    s.morris_confidence = r.number_in("confidence", 0.0, 1.0, 0.95, true, true);
     r.finish();
   }
   if (const toml::table* t = top.table("sobol")) {
@@ -196,6 +269,16 @@ void read_methods(Sens& s, const TableReader& top) {
     s.samples = static_cast<std::size_t>(r.integer("samples", 1, kMaxSize, 256));
     s.resamples = static_cast<std::size_t>(r.integer("bootstrap", 1, 1'000'000, 1000));
     s.confidence = r.number_in("confidence", 0.0, 1.0, 0.95, true, true);
+    s.sobol_seed = static_cast<std::uint64_t>(r.integer("seed", 1, std::numeric_limits<std::int64_t>::max(), 1));
+    s.second_order = r.boolean("second_order", false);
+    if (r.has("second_order_tolerance")) {
+      if (!s.second_order) r.fail("second_order_tolerance", "needs second_order = true");
+      if (!s.function) r.fail("second_order_tolerance", "only for a test function (its exact S_ij are the reference)");
+      s.second_order_tolerance = r.number_in("second_order_tolerance", 0.0, 1.0, 0.05, false, true);
+      s.second_order_reason = r.string("second_order_reason");
+    } else if (r.has("second_order_reason")) {
+      r.fail("second_order_reason", "belongs to second_order_tolerance");
+    }
     r.mark("convergence");
     if (const toml::node* cn = r.node("convergence")) {
       const toml::array* c = cn->as_array();
@@ -258,6 +341,11 @@ void cross_check(const Sens& s, const toml::table& st, const toml::node* pn) {
       if (path == "numerics.dt" && (s.dt_fraction || s.dt_fraction_base))
         fail_at(s, st.get("replicates"), "sensitivity.replicates", "Δt follows the guard's limit (dt_fraction): a replicate may not set it");
     }
+  if (s.function && s.function->name != "linear")  // exact indices known for uniform inputs only
+    for (const Parameter& p : s.params)
+      if (p.distribution != sens::Distribution::uniform)
+        fail_at(s, pn, "parameter", fmt::format("\"{}\": the exact indices of {} are for uniform inputs; other distributions with the linear function only",
+                                                p.label, s.function->name));
   if (s.function && sens::dimension(*s.function) != s.params.size())
     fail_at(s, pn, "parameter", fmt::format("the function {} takes {} inputs, {} parameters given", s.function->name,
                                             sens::dimension(*s.function), s.params.size()));
@@ -341,7 +429,23 @@ sens::ExactIndices exact_of(const Sens& s) {
       lo.push_back(p.low);
       hi.push_back(p.high);
     }
-    exact = sens::exact_indices(*s.function, lo, hi);
+    // Inputs not uniform (linear only, cross_check): Var x_i = ∫₀¹ (Q(u) − mean)² du by the midpoint
+    // rule on 2^18 cells (the quantile functions are tested against closed forms in the unit tests).
+    std::vector<double> variances;
+    bool uniform = true;
+    for (const auto& p : s.params) uniform = uniform && p.distribution == sens::Distribution::uniform && !p.integer;
+    if (!uniform)
+      for (const auto& p : s.params) {
+        constexpr std::size_t cells = std::size_t{1} << 18;
+        double m = 0.0, m2 = 0.0;
+        for (std::size_t k = 0; k < cells; ++k) {
+          const double x = sens::value_at(p, (static_cast<double>(k) + 0.5) / static_cast<double>(cells));
+          m += x / cells;
+          m2 += x * x / cells;
+        }
+        variances.push_back(m2 - m * m);
+      }
+    exact = sens::exact_indices(*s.function, lo, hi, variances);
   }
   return exact;
 }
@@ -357,7 +461,7 @@ nlohmann::json setup_of(const Sens& s, std::size_t runs, int failed, double dt_f
   setup["failed runs"] = failed;
   for (const auto& p : s.params)
     setup["range of " + p.label] = fmt::format("{} = {} … {} ({})", p.path.empty() ? p.label : p.path, num(p.low), num(p.high),
-                                               p.log_uniform ? "log-uniform" : p.integer ? "integers, uniform" : "uniform");
+                                               p.integer ? "integers, uniform" : sens::distribution_name(p.distribution));
   if (s.function) setup["function"] = s.function->name;
   if (!s.replicates.empty()) {
     std::string list;
@@ -397,6 +501,77 @@ void print_summary(const Sens& s, const sens::Analysis& an, std::size_t runs, in
 
 }  // namespace
 
+namespace {
+
+/// How the study's runs came about (result.json's provenance).
+struct RunStats {
+  int reused = 0, ran = 0, duplicates = 0;
+  double dt_fraction = 0.0;
+  std::string command;
+};
+
+/// indices.csv with the ASCII `name` column beside `parameter` (a pair "a:b" → "a_name:b_name").
+std::string with_names(const Sens& s, const std::string& csv) {
+  std::map<std::string, std::string> name;
+  for (const auto& p : s.params) name["\"" + p.label + "\""] = p.name;
+  name["\"dummy\""] = "dummy";  // the Sobol' noise floor (sensitivity_sobol.cpp)
+  for (const auto& p : s.params)
+    for (const auto& q : s.params) name["\"" + p.label + ":" + q.label + "\""] = p.name + ":" + q.name;
+  std::istringstream in(csv);
+  std::string line, out;
+  std::getline(in, line);
+  out += "method,output,parameter,name,index,estimate,low,high,exact\n";
+  while (std::getline(in, line)) {
+    const std::size_t q0 = line.find('"'), q1 = q0 == std::string::npos ? q0 : line.find('"', q0 + 1);
+    const std::string label = q1 == std::string::npos ? std::string() : line.substr(q0, q1 - q0 + 1);
+    const auto it = name.find(label);
+    if (it == name.end()) throw std::logic_error("indices.csv: no ASCII name for " + label);
+    out += line.substr(0, q1 + 1) + "," + it->second + line.substr(q1 + 1) + "\n";
+  }
+  return out;
+}
+
+/// The analysis of a planned design whose runs carry their outputs: indices.csv, runs.csv, result.json.
+StudyResult analyse_and_write(const Sens& s, const sens::Plan& plan, const fs::path& file, const fs::path& out, const StudyOptions& opt,
+                              std::chrono::steady_clock::time_point started, const RunStats& stats) {
+  const bool derived_dt = stats.dt_fraction > 0.0;
+  const sens::RunTable run_table = sens::write_runs_csv(s, plan.runs, derived_dt, out / "runs.csv");
+
+  sens::Analysis an{s};
+  an.idx_csv << "method,output,parameter,index,estimate,low,high,exact\n";
+  const sens::ExactIndices exact = exact_of(s);
+  if (s.oat) sens::analyse_oat(plan, an);
+  if (s.morris) sens::analyse_morris(plan, exact, an);
+  if (s.sobol) sens::analyse_sobol(plan, exact, an);
+  dem::write_file_atomic(out / "indices.csv", with_names(s, an.idx_csv.str()), false);
+  sens::report_runs(run_table, derived_dt, an);
+
+  nlohmann::json prov = dem::provenance();
+  prov["overrides"] = s.set;
+  prov["runs_reused"] = stats.reused;
+  prov["runs_run"] = stats.ran;
+  prov["runs_duplicate"] = stats.duplicates;  // same overrides as another run of the study: its result shared
+  std::string params;
+  for (const auto& p : s.params) params += (params.empty() ? "" : ", ") + p.label;
+  nlohmann::json result = {
+      {"study", s.name}, {"title", s.title}, {"requirement", s.requirement}, {"kind", "sensitivity"},
+      {"case", s.function ? "test function " + s.function->name : s.case_path}, {"parameter", params},
+      {"reference", s.function ? "exact indices of the test function (sensitivity_functions.hpp)" : "none: a sensitivity study"},
+      {"setup", setup_of(s, plan.runs.size(), run_table.failed, stats.dt_fraction)}, {"provenance", prov}, {"passed", an.passed},
+      {"checks", an.checks}, {"series", an.series}, {"figures", an.figures}, {"tables", an.tables}};
+  result["provenance"]["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  result["provenance"]["command"] = stats.command;
+  // The study's README (purpose, findings, known limits) travels with the result: the report shows it.
+  if (const fs::path readme = fs::absolute(file).parent_path() / "README.md"; fs::exists(readme))
+    result["readme"] = dem::read_file(readme);
+  dem::write_file_atomic(out / "result.json", result.dump(2) + "\n");
+
+  if (opt.print) print_summary(s, an, plan.runs.size(), run_table.failed, stats.reused, out / "result.json");
+  return {an.passed, result};
+}
+
+}  // namespace
+
 StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
   const auto started = std::chrono::steady_clock::now();
   const Sens s = read_sens(file);
@@ -415,41 +590,36 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
   });
   progress.close();
   fs::remove(out / "running.json");
-  const bool derived_dt = runner.dt_fraction > 0.0;
-  const sens::RunTable run_table = sens::write_runs_csv(s, plan.runs, derived_dt, out / "runs.csv");
+  const RunStats stats{runner.reused.load(), runner.ran.load(), runner.duplicates, runner.dt_fraction,
+                       fmt::format("dem2d sweep {} --out {} --jobs {}{}", file.string(), out.string(), opt.jobs, opt.use_cache ? "" : " --fresh")};
+  return analyse_and_write(s, plan, file, out, opt, started, stats);
+}
 
-  sens::Analysis an{s};
-  an.idx_csv << "method,output,parameter,index,estimate,low,high,exact\n";
-  const sens::ExactIndices exact = exact_of(s);
-  if (s.oat) sens::analyse_oat(plan, an);
-  if (s.morris) sens::analyse_morris(plan, exact, an);
-  if (s.sobol) sens::analyse_sobol(plan, exact, an);
-  dem::write_file_atomic(out / "indices.csv", an.idx_csv.str(), false);
-  sens::report_runs(run_table, derived_dt, an);
+StudyResult analyse_sensitivity(const fs::path& file, const fs::path& outputs_csv, const StudyOptions& opt) {
+  const auto started = std::chrono::steady_clock::now();
+  const Sens s = read_sens(file);
+  if (!s.replicates.empty()) throw dem::CaseError(fmt::format("{}: replicates: analyse reads one output per run; give the replicates' means", file.string()));
+  sens::Plan plan = sens::plan_runs(s);
+  sens::read_outputs_csv(s, outputs_csv, plan.runs);
+  const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
+  fs::create_directories(out);
+  const RunStats stats{0, 0, 0, 0.0, fmt::format("dem2d analyse {} --outputs {} --out {}", file.string(), outputs_csv.string(), out.string())};
+  return analyse_and_write(s, plan, file, out, opt, started, stats);
+}
 
-  nlohmann::json prov = dem::provenance();
-  prov["overrides"] = s.set;
-  prov["runs_reused"] = runner.reused.load();
-  prov["runs_run"] = runner.ran.load();
-  prov["runs_duplicate"] = runner.duplicates;  // same overrides as another run of the study: its result shared
-  std::string params;
-  for (const auto& p : s.params) params += (params.empty() ? "" : ", ") + p.label;
-  nlohmann::json result = {
-      {"study", s.name}, {"title", s.title}, {"requirement", s.requirement}, {"kind", "sensitivity"},
-      {"case", s.function ? "test function " + s.function->name : s.case_path}, {"parameter", params},
-      {"reference", s.function ? "exact indices of the test function (sensitivity_functions.hpp)" : "none: a sensitivity study"},
-      {"setup", setup_of(s, plan.runs.size(), run_table.failed, runner.dt_fraction)}, {"provenance", prov}, {"passed", an.passed},
-      {"checks", an.checks}, {"series", an.series}, {"figures", an.figures}, {"tables", an.tables}};
-  result["provenance"]["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  result["provenance"]["command"] = fmt::format("dem2d sweep {} --out {} --jobs {}{}", file.string(), out.string(), opt.jobs,
-                                                opt.use_cache ? "" : " --fresh");
-  // The study's README (purpose, findings, known limits) travels with the result: the report shows it.
-  if (const fs::path readme = fs::absolute(file).parent_path() / "README.md"; fs::exists(readme))
-    result["readme"] = dem::read_file(readme);
-  dem::write_file_atomic(out / "result.json", result.dump(2) + "\n");
-
-  if (opt.print) print_summary(s, an, plan.runs.size(), run_table.failed, runner.reused.load(), out / "result.json");
-  return {an.passed, result};
+void write_sensitivity_design(const fs::path& file, const StudyOptions& opt) {
+  const Sens s = read_sens(file);
+  if (!s.replicates.empty()) throw dem::CaseError(fmt::format("{}: replicates: --design-only writes one row per run, without replicates", file.string()));
+  if (s.dt_fraction || s.dt_fraction_base)
+    throw dem::CaseError(fmt::format("{}: dt_fraction: --design-only cannot derive each run's Δt from the guard; give numerics.dt instead", file.string()));
+  sens::check_ranges(s);
+  const sens::Plan plan = sens::plan_runs(s);
+  const fs::path out = opt.out_dir.empty() ? fs::path("build/studies") / s.name : opt.out_dir;
+  fs::create_directories(out);
+  sens::write_design_csv(s, plan.runs, out / "design.csv");
+  if (opt.print)
+    fmt::print("sensitivity {}: design of {} runs written to {}\n  run them anywhere, then: dem2d analyse {} --outputs OUTPUTS.csv\n", s.name,
+               plan.runs.size(), (out / "design.csv").string(), file.string());
 }
 
 }  // namespace ver

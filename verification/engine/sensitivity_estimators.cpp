@@ -174,16 +174,55 @@ SobolAsymptoticSd sobol_asymptotic_sd(const std::vector<double>& fa, const std::
 
 double normal_quantile(double p) {
   if (!(p > 0.0 && p < 1.0)) throw std::invalid_argument("normal_quantile: 0 < p < 1");
-  double lo = -40.0, hi = 40.0;
-  for (int k = 0; k < 200 && hi - lo > 1e-12; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (0.5 * std::erfc(-mid / std::sqrt(2.0)) < p ? lo : hi) = mid;
+  // Acklam's rational approximation (relative error 1.15e-9), then one Halley step on
+  // Φ(x) − p = 0 with Φ from std::erfc: the error falls to round-off.
+  static constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
+                                 1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
+  static constexpr double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
+                                 6.680131188771972e+01, -1.328068155288572e+01};
+  static constexpr double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
+                                 -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
+  static constexpr double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00, 3.754408661907416e+00};
+  const double p_low = 0.02425;
+  double x;
+  if (p < p_low || p > 1.0 - p_low) {
+    const double q = std::sqrt(-2.0 * std::log(p < p_low ? p : 1.0 - p));
+    x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) / ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0);
+    if (p > 1.0 - p_low) x = -x;
+  } else {
+    const double q = p - 0.5, r = q * q;
+    x = (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
+        (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0);
   }
-  return 0.5 * (lo + hi);
+  const double e = 0.5 * std::erfc(-x / std::sqrt(2.0)) - p;
+  const double u = e * std::sqrt(2.0 * 3.14159265358979323846) * std::exp(0.5 * x * x);
+  return x - u / (1.0 + 0.5 * x * u);
 }
 
+namespace {
+
+struct EffectStats {
+  double mu, mu_star, sigma;
+};
+
+EffectStats effect_stats(const std::vector<double>& ee) {
+  const double n = static_cast<double>(ee.size());
+  double mu = 0.0, mu_star = 0.0;
+  for (double e : ee) {
+    mu += e;
+    mu_star += std::abs(e);
+  }
+  mu = n > 0 ? mu / n : std::nan("");
+  mu_star = n > 0 ? mu_star / n : std::nan("");
+  double var = 0.0;
+  for (double e : ee) var += (e - mu) * (e - mu);
+  return {mu, mu_star, n > 1 ? std::sqrt(var / (n - 1.0)) : std::nan("")};
+}
+
+}  // namespace
+
 MorrisEffects morris_effects(const std::vector<MorrisTrajectory>& tr, const std::vector<std::vector<double>>& f,
-                             std::size_t d) {
+                             std::size_t d, std::size_t resamples, double confidence, std::uint64_t seed) {
   if (f.size() != tr.size()) throw std::invalid_argument("morris_effects: one output row per trajectory");
   std::vector<std::vector<double>> ee(d);
   for (std::size_t t = 0; t < tr.size(); ++t) {
@@ -196,21 +235,35 @@ MorrisEffects morris_effects(const std::vector<MorrisTrajectory>& tr, const std:
     }
   }
   MorrisEffects m;
+  std::mt19937_64 rng(seed);
+  const double lo = 0.5 * (1.0 - confidence), hi = 1.0 - lo;
+  const double z = normal_quantile(hi);
   for (std::size_t i = 0; i < d; ++i) {
-    const double n = static_cast<double>(ee[i].size());
-    double mu = 0.0, mu_star = 0.0;
-    for (double e : ee[i]) {
-      mu += e;
-      mu_star += std::abs(e);
-    }
-    mu = n > 0 ? mu / n : std::nan("");
-    mu_star = n > 0 ? mu_star / n : std::nan("");
-    double var = 0.0;
-    for (double e : ee[i]) var += (e - mu) * (e - mu);
-    m.mu.push_back(mu);
-    m.mu_star.push_back(mu_star);
-    m.sigma.push_back(n > 1 ? std::sqrt(var / (n - 1.0)) : std::nan(""));
+    const EffectStats st = effect_stats(ee[i]);
+    m.mu.push_back(st.mu);
+    m.mu_star.push_back(st.mu_star);
+    m.sigma.push_back(st.sigma);
     m.effects.push_back(ee[i].size());
+    std::vector<double> b_mu, b_star, b_sigma, sample(ee[i].size());
+    for (std::size_t b = 0; b < resamples && !ee[i].empty(); ++b) {
+      for (auto& e : sample) e = ee[i][static_cast<std::size_t>(rng() % ee[i].size())];
+      const EffectStats q = effect_stats(sample);
+      b_mu.push_back(q.mu);
+      b_star.push_back(q.mu_star);
+      b_sigma.push_back(q.sigma);
+    }
+    auto interval = [&](double est, const std::vector<double>& boot) -> Interval {
+      if (boot.empty() || !std::isfinite(est)) return {est, est, est};
+      return {est, quantile(boot, lo), quantile(boot, hi)};
+    };
+    m.mu_ci.push_back(interval(st.mu, b_mu));
+    m.mu_star_ci.push_back(interval(st.mu_star, b_star));
+    m.sigma_ci.push_back(ee[i].size() > 1 ? interval(st.sigma, b_sigma) : Interval{st.sigma, st.sigma, st.sigma});
+    double sm = 0.0, s2 = 0.0;
+    for (double x : b_star) sm += x;
+    sm = b_star.empty() ? 0.0 : sm / static_cast<double>(b_star.size());
+    for (double x : b_star) s2 += (x - sm) * (x - sm);
+    m.mu_star_conf.push_back(b_star.size() > 1 ? z * std::sqrt(s2 / static_cast<double>(b_star.size() - 1)) : 0.0);
   }
   return m;
 }

@@ -51,17 +51,23 @@ struct SobolAsymptoticSd {
 SobolAsymptoticSd sobol_asymptotic_sd(const std::vector<double>& fa, const std::vector<double>& fb,
                                       const std::vector<std::vector<double>>& fab);
 
-/// The standard normal quantile z with Φ(z) = p (0 < p < 1), to 1e-9 (bisection on std::erfc).
+/// The standard normal quantile z with Φ(z) = p (0 < p < 1): Acklam's approximation and one Halley step (round-off).
 double normal_quantile(double p);
 
 struct MorrisEffects {
   std::vector<double> mu, mu_star, sigma;  // per parameter: mean, mean |EE|, standard deviation (r − 1)
   std::vector<std::size_t> effects;        // elementary effects used per parameter
+  /// Bootstrap of each parameter's elementary effects (drawn with replacement, `resamples` times):
+  /// percentile intervals of μ*, μ and σ (estimate = the value above), and SALib's μ*_conf, the
+  /// half-width z_{(1+c)/2} × the bootstrap standard deviation of μ* (SALib morris.analyze).
+  std::vector<Interval> mu_star_ci, mu_ci, sigma_ci;
+  std::vector<double> mu_star_conf;
 };
 
 /// Elementary effects EE_i = (f(x + Δ e_i) − f(x)) / (±Δ) in unit coordinates (Morris 1991), μ*
-/// (Campolongo et al. 2007), σ; f[t][k] is the output at point k of trajectory t.
+/// (Campolongo et al. 2007), σ; f[t][k] is the output at point k of trajectory t. Bootstrap as above
+/// (std::mt19937_64, seed; resamples = 0: intervals of zero width).
 MorrisEffects morris_effects(const std::vector<MorrisTrajectory>& tr, const std::vector<std::vector<double>>& f,
-                             std::size_t d);
+                             std::size_t d, std::size_t resamples = 1000, double confidence = 0.95, std::uint64_t seed = 12345);
 
 }  // namespace ver::sens

@@ -28,7 +28,8 @@ double evaluate(const TestFunction& f, const std::vector<double>& x) {
   return y;
 }
 
-ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low, const std::vector<double>& high) {
+ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low, const std::vector<double>& high,
+                           const std::vector<double>& variances) {
   ExactIndices e;
   const std::size_t d = dimension(f);
   if (f.name == "ishigami") {
@@ -40,6 +41,8 @@ ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low
     const double var = v1 + v2 + v13;
     e.first = {v1 / var, v2 / var, 0.0};
     e.total = {(v1 + v13) / var, v2 / var, v13 / var};
+    e.second.assign(3, std::vector<double>(3, 0.0));
+    e.second[0][2] = v13 / var;  // the only interaction: b x3⁴ sin x1
   } else if (f.name == "g") {
     std::vector<double> v(d);
     double prod = 1.0;
@@ -52,13 +55,17 @@ ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low
       e.first.push_back(v[i] / var);
       e.total.push_back(v[i] * prod / (1.0 + v[i]) / var);
     }
+    e.second.assign(d, std::vector<double>(d, 0.0));  // the ANOVA term of a product: V_ij = V_i V_j
+    for (std::size_t i = 0; i < d; ++i)
+      for (std::size_t j = i + 1; j < d; ++j) e.second[i][j] = v[i] * v[j] / var;
   } else {  // linear, uniform ranges: additive, S_i = S_Ti = c_i² w_i² / Σ
     double var = 0.0;
     std::vector<double> vi(d);
     for (std::size_t i = 0; i < d; ++i) {
       const double w = high.at(i) - low.at(i);
-      vi[i] = f.coefficients[i] * f.coefficients[i] * w * w / 12.0;
+      vi[i] = f.coefficients[i] * f.coefficients[i] * (variances.empty() ? w * w / 12.0 : variances.at(i));
       var += vi[i];
+      if (!variances.empty()) continue;  // not uniform: the elementary effects vary
       e.morris_mu_star.push_back(std::abs(f.coefficients[i]) * w);
       e.morris_sigma.push_back(0.0);
     }
@@ -66,6 +73,7 @@ ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low
       e.first.push_back(vi[i] / var);
       e.total.push_back(vi[i] / var);
     }
+    e.second.assign(d, std::vector<double>(d, 0.0));  // additive: no interactions
   }
   return e;
 }

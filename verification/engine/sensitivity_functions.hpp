@@ -24,8 +24,13 @@ double evaluate(const TestFunction& f, const std::vector<double>& x);
 struct ExactIndices {
   std::vector<double> first, total;
   std::vector<double> morris_mu_star, morris_sigma;  // linear only
+  /// second[i][j] (i < j): the closed second-order index S_ij = V_ij / V (Ishigami: only S_13 =
+  /// 8 b² π⁸ / 225 / V; g: V_i V_j / V; linear: 0). Empty where unknown (ln f).
+  std::vector<std::vector<double>> second;
 };
-ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low, const std::vector<double>& high);
+/// linear with `variances` (one per input, any distribution): S_i = S_Ti = c_i² Var x_i / Σ, no Morris values.
+ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low, const std::vector<double>& high,
+                           const std::vector<double>& variances = {});
 
 /// The exact indices of ln f where known: the g-function with every a_i > 0, whose logarithm
 /// ln g = Σ ln(|4 x_i − 2| + a_i) − ln(1 + a_i) is additive, so S_i = S_Ti = V_i / Σ V_j with

@@ -3,12 +3,39 @@
 // linear test function.
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include <fmt/format.h>
 
 #include "engine/sensitivity_study.hpp"
 
 namespace ver::sens {
+
+namespace {
+
+/// μ* per parameter with its bootstrap interval (bars with error bars).
+nlohmann::json mu_star_figure(const Sens& s, const MorrisEffects& m, std::size_t o) {
+  const std::size_t d = s.params.size();
+  nlohmann::json x = nlohmann::json::array(), y = nlohmann::json::array(), lo = nlohmann::json::array(), hi = nlohmann::json::array(),
+                 xticks = nlohmann::json::array();
+  for (std::size_t i = 0; i < d; ++i) {
+    x.push_back(static_cast<double>(i + 1));
+    y.push_back(jnum(m.mu_star[i]));
+    lo.push_back(jnum(m.mu_star_ci[i].low));
+    hi.push_back(jnum(m.mu_star_ci[i].high));
+    xticks.push_back({static_cast<double>(i + 1), s.params[i].label});
+  }
+  nlohmann::json curves = nlohmann::json::array();
+  curves.push_back({{"label", "μ*"}, {"x", x}, {"y", y}, {"style", "boxes"}, {"width", 0.4}});
+  curves.push_back({{"label", fmt::format("{:.0f} % bootstrap interval ({} resamples of the elementary effects)", 100.0 * s.morris_confidence,
+                                          s.morris_resamples)},
+                    {"x", x}, {"y", y}, {"ylow", lo}, {"yhigh", hi}, {"style", "errorbars"}, {"colour", "#000000"}});
+  return {{"id", fmt::format("morris_mu_star_{}", o)}, {"title", fmt::format("Morris μ* of {} with its bootstrap interval", s.outputs[o])},
+          {"xlabel", "parameter"}, {"ylabel", fmt::format("μ* [{} per unit range]", s.outputs[o])}, {"logx", false}, {"logy", false},
+          {"curves", curves}, {"xticks", xticks}, {"xrange", {0.5, static_cast<double>(d) + 0.5}}};
+}
+
+}  // namespace
 
 void analyse_morris(const Plan& plan, const ExactIndices& exact, Analysis& an) {
   const Sens& s = an.s;
@@ -20,18 +47,20 @@ void analyse_morris(const Plan& plan, const ExactIndices& exact, Analysis& an) {
     std::size_t k = plan.morris_begin;
     for (std::size_t t = 0; t < traj.size(); ++t)
       for (std::size_t p = 0; p < traj[t].points.size(); ++p) f[t].push_back(plan.runs[k++].outputs[o]);
-    const MorrisEffects m = morris_effects(traj, f, d);
+    const MorrisEffects m = morris_effects(traj, f, d, s.morris_resamples, s.morris_confidence);
     nlohmann::json curves = nlohmann::json::array(), labels = nlohmann::json::array();
     for (std::size_t i = 0; i < d; ++i) {
       if (std::isfinite(m.mu_star[i]) && std::isfinite(m.sigma[i]))
         labels.push_back({{"x", m.mu_star[i]}, {"y", m.sigma[i]}, {"text", s.params[i].label}});
-      rows.push_back({s.outputs[o], s.params[i].label, num(m.mu_star[i]), num(m.mu[i]), num(m.sigma[i]),
-                      std::to_string(m.effects[i]), exact.morris_mu_star.empty() ? "" : num(exact.morris_mu_star[i])});
+      rows.push_back({s.outputs[o], s.params[i].label, num(m.mu_star[i]),
+                      fmt::format("[{}, {}]", num(m.mu_star_ci[i].low), num(m.mu_star_ci[i].high)), num(m.mu_star_conf[i]), num(m.mu[i]),
+                      num(m.sigma[i]), std::to_string(m.effects[i]), exact.morris_mu_star.empty() ? "" : num(exact.morris_mu_star[i])});
       curves.push_back({{"label", s.params[i].label}, {"x", {jnum(m.mu_star[i])}}, {"y", {jnum(m.sigma[i])}}, {"style", "points"}});
-      an.idx_csv << "morris," << s.outputs[o] << ",\"" << s.params[i].label << "\",mu_star," << fmt::format("{:.17g}", m.mu_star[i]) << ",,,"
-                 << (exact.morris_mu_star.empty() ? std::string() : fmt::format("{:.17g}", exact.morris_mu_star[i])) << "\n";
-      an.idx_csv << "morris," << s.outputs[o] << ",\"" << s.params[i].label << "\",mu," << fmt::format("{:.17g}", m.mu[i]) << ",,,\n";
-      an.idx_csv << "morris," << s.outputs[o] << ",\"" << s.params[i].label << "\",sigma," << fmt::format("{:.17g}", m.sigma[i]) << ",,,\n";
+      const std::string mu_star_exact = exact.morris_mu_star.empty() ? std::string() : fmt::format("{:.17g}", exact.morris_mu_star[i]);
+      for (const auto& [index, iv, ex] : {std::tuple{"mu_star", m.mu_star_ci[i], mu_star_exact}, std::tuple{"mu", m.mu_ci[i], std::string()},
+                                          std::tuple{"sigma", m.sigma_ci[i], std::string()}})
+        an.idx_csv << "morris," << s.outputs[o] << ",\"" << s.params[i].label << "\"," << index << ","
+                   << fmt::format("{:.17g},{:.17g},{:.17g},", iv.estimate, iv.low, iv.high) << ex << "\n";
       if (!exact.morris_mu_star.empty()) {
         const double e = std::abs(m.mu_star[i] - exact.morris_mu_star[i]);
         const double tol = 1e-9 * std::max(1.0, exact.morris_mu_star[i]);
@@ -47,10 +76,12 @@ void analyse_morris(const Plan& plan, const ExactIndices& exact, Analysis& an) {
                           {"title", fmt::format("Morris screening of {}: μ* against σ ({} trajectories, {} levels)", s.outputs[o], s.trajectories, s.levels)},
                           {"xlabel", fmt::format("μ* [{} per unit range]", s.outputs[o])}, {"ylabel", fmt::format("σ [{} per unit range]", s.outputs[o])},
                           {"logx", false}, {"logy", false}, {"curves", curves}, {"labels", labels}});
+    an.figures.push_back(mu_star_figure(s, m, o));
   }
   an.tables.push_back({{"title", fmt::format("Morris elementary effects (unit coordinates: per full range; {} trajectories, {} levels, Δ = {:.4g})",
                                              s.trajectories, s.levels, morris_delta(s.levels))},
-                       {"columns", {"output", "parameter", "μ*", "μ", "σ", "effects", "exact μ*"}},
+                       {"columns", {"output", "parameter", "μ*", fmt::format("{:.0f} % bootstrap interval", 100.0 * s.morris_confidence),
+                                    "μ*_conf (SALib)", "μ", "σ", "effects", "exact μ*"}},
                        {"rows", rows}});
 }
 

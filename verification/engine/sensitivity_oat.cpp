@@ -35,7 +35,7 @@ void analyse_oat(const Plan& plan, Analysis& an) {
                       fmt::format("{} … {}{}", num(s.params[i].low), num(s.params[i].high), s.params[i].log_uniform ? " (log)" : s.params[i].integer ? " (integer)" : ""),
                       num(ys.empty() ? NAN : ys.front()), num(ys.empty() ? NAN : ys.back()), num(range),
                       num(range / std::abs(runs[oat_begin].outputs[o]))});
-      an.idx_csv << "oat," << s.outputs[o] << ",\"" << plain(s.params[i].label) << "\",range," << fmt::format("{:.17g}", range) << ",,,\n";
+      an.idx_csv << "oat," << s.outputs[o] << ",\"" << plain(s.params[i].label) << "\",range," << fmt::format("{:.17g},{:.17g},{:.17g},", range, range, range) << "\n";  // deterministic: no sampling error
     }
     an.figures.push_back({{"id", fmt::format("oat_{}", o)},
                           {"title", fmt::format("One-at-a-time sweeps of {} (others at the base case; base value {})", s.outputs[o], num(runs[oat_begin].outputs[o]))},

@@ -58,11 +58,13 @@ Plan plan_runs(const Sens& s) {
   }
   plan.sobol_begin = runs.size();
   if (s.sobol) {
-    const SaltelliDesign des = saltelli_design(s.samples, d);
+    const SaltelliDesign des = saltelli_design(s.samples, d, s.sobol_seed, s.second_order);
     for (const auto& row : des.a) runs.push_back(make_run(s, "sobol A", row));
     for (const auto& row : des.b) runs.push_back(make_run(s, "sobol B", row));
     for (std::size_t i = 0; i < d; ++i)
       for (const auto& row : des.ab[i]) runs.push_back(make_run(s, fmt::format("sobol AB{}", i + 1), row));
+    for (std::size_t i = 0; i < des.ba.size(); ++i)
+      for (const auto& row : des.ba[i]) runs.push_back(make_run(s, fmt::format("sobol BA{}", i + 1), row));
   }
   return plan;
 }

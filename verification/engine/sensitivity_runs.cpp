@@ -136,7 +136,9 @@ void Runner::run_all_runs(std::vector<Run>& runs, int jobs) {
     if (!settled[k]) set_outputs(runs[k], probes[k]);
 }
 
-bool run_ok(const Run& r) { return r.status != "refused" && r.status != "blow-up" && r.status != "non-finite"; }
+bool run_ok(const Run& r) {  // missing, failed: no output in the outputs file of `dem2d analyse`
+  return r.status != "refused" && r.status != "blow-up" && r.status != "non-finite" && r.status != "missing" && r.status != "failed";
+}
 
 namespace {
 
@@ -182,7 +184,7 @@ void Runner::run_samples(std::vector<Run>& runs, int jobs) {
 RunTable write_runs_csv(const Sens& s, const std::vector<Run>& runs, bool derived_dt, const fs::path& file) {
   std::ostringstream csv;
   csv << "run,method";
-  for (const auto& p : s.params) csv << ",\"" << p.label << "\"";
+  for (const auto& p : s.params) csv << "," << p.name << " [" << p.unit << "]";  // ASCII name and SI unit (sensitivity_names.hpp)
   if (derived_dt) csv << ",dt";
   for (const auto& o : s.outputs) csv << "," << o;
   csv << ",status,message\n";

@@ -8,9 +8,12 @@
 
 #include <gsl/gsl_qrng.h>
 
+#include "engine/sensitivity_scramble.hpp"
+
 namespace ver::sens {
 
 double value_at(const Parameter& p, double u) {
+  if (p.distribution != Distribution::uniform && p.distribution != Distribution::log_uniform) return quantile_of(p, u);
   if (p.integer) {  // each integer low … high equally likely for u uniform in [0, 1]
     const double span = p.high - p.low;
     return p.low + std::min(std::floor(u * (span + 1.0)), span);
@@ -19,7 +22,7 @@ double value_at(const Parameter& p, double u) {
   return p.low + u * (p.high - p.low);
 }
 
-Matrix sobol_points(std::size_t n, std::size_t d) {
+Matrix sobol_points(std::size_t n, std::size_t d, std::uint64_t scramble) {
   if (d < 1 || d > gsl_qrng_sobol->max_dimension)
     throw std::invalid_argument("sobol_points: dimension must be 1..40 (GSL's Sobol' generator)");
   std::unique_ptr<gsl_qrng, decltype(&gsl_qrng_free)> q(gsl_qrng_alloc(gsl_qrng_sobol, static_cast<unsigned>(d)),
@@ -32,11 +35,16 @@ Matrix sobol_points(std::size_t n, std::size_t d) {
     gsl_qrng_get(q.get(), x.data());
     m.push_back(x);
   }
+  if (scramble != kUnscrambled)
+    for (std::size_t k = 0; k < d; ++k) {
+      const OwenScramble perm(scramble, k);
+      for (auto& row : m) row[k] = perm(row[k]);
+    }
   return m;
 }
 
-SaltelliDesign saltelli_design(std::size_t n, std::size_t d) {
-  const Matrix p = sobol_points(n, 2 * d);
+SaltelliDesign saltelli_design(std::size_t n, std::size_t d, std::uint64_t scramble, bool second_order) {
+  const Matrix p = sobol_points(n, 2 * d, scramble);
   SaltelliDesign s;
   for (const auto& row : p) {
     s.a.emplace_back(row.begin(), row.begin() + static_cast<std::ptrdiff_t>(d));
@@ -45,6 +53,11 @@ SaltelliDesign saltelli_design(std::size_t n, std::size_t d) {
   s.ab.assign(d, s.a);
   for (std::size_t i = 0; i < d; ++i)
     for (std::size_t j = 0; j < n; ++j) s.ab[i][j][i] = s.b[j][i];
+  if (second_order) {
+    s.ba.assign(d, s.b);
+    for (std::size_t i = 0; i < d; ++i)
+      for (std::size_t j = 0; j < n; ++j) s.ba[i][j][i] = s.a[j][i];
+  }
   return s;
 }
 

@@ -15,11 +15,15 @@ namespace {
 
 /// The estimators' inputs for output o: its values in the runs of A, B and each AB_i.
 DesignOutputs outputs_of_runs(const Plan& plan, std::size_t o, std::size_t n, std::size_t d) {
-  DesignOutputs y{std::vector<double>(n), std::vector<double>(n), std::vector<std::vector<double>>(d, std::vector<double>(n))};
+  DesignOutputs y{std::vector<double>(n), std::vector<double>(n), std::vector<std::vector<double>>(d, std::vector<double>(n)), {}};
+  const bool second = plan.runs.size() >= plan.sobol_begin + (2 * d + 2) * n;
+  if (second) y.fba.assign(d, std::vector<double>(n));
   for (std::size_t j = 0; j < n; ++j) {
     y.fa[j] = plan.runs[plan.sobol_begin + j].outputs[o];
     y.fb[j] = plan.runs[plan.sobol_begin + n + j].outputs[o];
     for (std::size_t i = 0; i < d; ++i) y.fab[i][j] = plan.runs[plan.sobol_begin + (2 + i) * n + j].outputs[o];
+    if (second)
+      for (std::size_t i = 0; i < d; ++i) y.fba[i][j] = plan.runs[plan.sobol_begin + (2 + d + i) * n + j].outputs[o];
   }
   return y;
 }
@@ -51,6 +55,24 @@ void index_rows(const SobolIndices& si, const ExactIndices& exact_sobol, const s
       }
     }
   }
+}
+
+/// The noise floor, at no cost: Janon's first order of an inert dummy input, whose AB_dummy is A
+/// itself (Y = f(B), Y^dummy = f(A): independent points, exact index 0). Saltelli's S and Jansen's S_T
+/// of such an input are exactly 0 (f(AB) − f(A) = 0 row by row), so only Janon's carries noise; an
+/// index whose interval does not clear the dummy's is not resolved at this N.
+void dummy_row(const DesignOutputs& y, const std::string& yname, const std::string& tsuffix, nlohmann::json& rows, Analysis& an) {
+  const Sens& s = an.s;
+  const SobolIndices sd = sobol_indices(y.fa, y.fb, {y.fa}, s.resamples, s.confidence);
+  const Interval& j = sd.first_janon[0];
+  rows.push_back({yname, "dummy (inert: noise floor)", "0", "[0, 0]", "0", "[0, 0]", s.function ? "0" : "", s.function ? "0" : "",
+                  num(j.estimate), fmt::format("[{}, {}]", num(j.low), num(j.high))});
+  an.idx_csv << "sobol," << yname << ",\"dummy\",S_janon," << fmt::format("{:.17g},{:.17g},{:.17g},0", j.estimate, j.low, j.high) << "\n";
+  if (s.function)
+    an.add_check(fmt::format("S_janon of the inert dummy ({}, N = {}{})", s.function->name, s.samples, tsuffix), 0.0, j.estimate,
+                 std::abs(j.estimate), j.estimate > 0.0 ? j.estimate - j.low : j.high - j.estimate,
+                 fmt::format("the {:.0f} % bootstrap interval must contain 0, the exact index of an input without effect", 100.0 * s.confidence),
+                 j.low <= 0.0 && j.high >= 0.0, fmt::format("interval [{}, {}]", num(j.low), num(j.high)));
 }
 
 nlohmann::json jv(const std::vector<double>& v) {
@@ -121,15 +143,17 @@ void analyse_transform(const Plan& plan, const ExactIndices& exact, Transform tr
   if (s.function && transform == Transform::rank) exact_sobol = {};
   // What names a check, figure or table of a transform: "" for the output itself.
   const std::string tsuffix = transform == Transform::none ? "" : ", " + transformed_label(transform, "y");
-  nlohmann::json rows = nlohmann::json::array();
+  nlohmann::json rows = nlohmann::json::array(), rows2 = nlohmann::json::array();
   for (std::size_t o = 0; o < s.outputs.size(); ++o) {
     DesignOutputs y = outputs_of_runs(plan, o, n, d);
-    apply_transform(transform, y.fa, y.fb, y.fab);
+    apply_transform(transform, y.fa, y.fb, y.fab, y.fba);
     const std::string yname = transformed_label(transform, s.outputs[o]);
     const SobolIndices si = sobol_indices(y.fa, y.fb, y.fab, s.resamples, s.confidence);
     if (s.function && s.resamples >= 100) check_interval_widths(si, transform, tsuffix, an);
     index_rows(si, exact_sobol, yname, tsuffix, rows, an);
+    dummy_row(y, yname, tsuffix, rows, an);
     an.figures.push_back(index_figure(s, si, exact_sobol, yname, transform, o));
+    if (s.second_order) second_order_rows(y, exact_sobol, yname, tsuffix, rows2, an);
   }
   an.tables.push_back({{"title", fmt::format("Sobol' indices (Saltelli sampling, N = {}, {} runs; {} % bootstrap intervals){}", n, n * (d + 2),
                                              100.0 * s.confidence,
@@ -138,6 +162,10 @@ void analyse_transform(const Plan& plan, const ExactIndices& exact, Transform tr
                                                  transformed_label(transform, "y"), transform_name(transform)))},
                        {"columns", {"output", "parameter", "S", "interval", "S_T", "interval", "exact S", "exact S_T", "S (Janon)", "interval"}},
                        {"rows", rows}});
+  if (s.second_order)
+    an.tables.push_back({{"title", fmt::format("Second-order Sobol' indices S_ij (Saltelli 2002: A, B, AB_i and BA_i, N = {}, {} runs; {} % bootstrap intervals){}",
+                                               n, n * (2 * d + 2), 100.0 * s.confidence, tsuffix)},
+                         {"columns", {"output", "parameters", "S_ij", "interval", "exact S_ij"}}, {"rows", rows2}});
   if (s.function && !s.convergence.empty() && !exact_sobol.first.empty()) sobol_convergence(exact_sobol, transform, tsuffix, an);
 }
 

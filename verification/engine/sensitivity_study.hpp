@@ -32,9 +32,15 @@ struct Sens {
   std::size_t oat_points = 5;
   std::size_t trajectories = 10;
   int levels = 4;
+  std::size_t morris_resamples = 1000;  // [morris] bootstrap: resamples of the elementary effects
+  double morris_confidence = 0.95;     // [morris] confidence of the μ*, μ, σ intervals
   std::uint64_t seed = 1;
   std::size_t samples = 256, resamples = 1000;
   double confidence = 0.95;
+  std::uint64_t sobol_seed = 1;   // [sobol] seed: the Owen scrambling of the Sobol' sequence
+  bool second_order = false;      // [sobol] second_order: also BA_i, the S_ij (sensitivity_second_order.hpp)
+  std::optional<double> second_order_tolerance;  // function studies: |S_ij − exact| allowed, with its reason
+  std::string second_order_reason;
   std::vector<std::size_t> convergence;     // function studies: Sobol' sample sizes for the error rate
   std::optional<double> expected_order;
   double order_band = 0.3;
@@ -85,7 +91,7 @@ void check_ranges(const Sens& s);
 struct Plan {
   std::vector<Run> runs;
   std::vector<double> grid;                   // one-at-a-time: the unit coordinates of each sweep
-  std::size_t oat_begin = 0, morris_begin = 0, sobol_begin = 0;
+  std::size_t oat_begin = 0, morris_begin = 0, sobol_begin = 0;  // Sobol': A, B, AB_1 … AB_d, then BA_1 … BA_d (second order)
   std::vector<MorrisTrajectory> traj;
 };
 Plan plan_runs(const Sens& s);
@@ -111,6 +117,17 @@ struct Runner {
 
 /// The Δt fraction of the study's runs (0: each run keeps its case's Δt).
 double dt_fraction_of(const Sens& s);
+
+// ---- sample and analyse apart (sensitivity_design_io.cpp) ----
+
+/// design.csv: run, method, then each parameter's value (17 digits, SI; blank = the base case's), the
+/// header naming each by its ASCII name and unit ("dt [s]").
+void write_design_csv(const Sens& s, const std::vector<Run>& runs, const std::filesystem::path& file);
+
+/// Reads an outputs file (CSV: a `run` column 0 … n−1, one column per output of the study; other
+/// columns ignored; blank, "nan" or a missing row = a failed run) into the runs' outputs and status.
+/// Throws dem::CaseError (file:line: what) for anything else.
+void read_outputs_csv(const Sens& s, const std::filesystem::path& file, std::vector<Run>& runs);
 
 /// The table of every run (runs.csv, and its rows for result.json) and how many failed.
 struct RunTable {
@@ -140,14 +157,21 @@ void analyse_oat(const Plan& plan, Analysis& an);
 void analyse_morris(const Plan& plan, const ExactIndices& exact, Analysis& an);
 void analyse_sobol(const Plan& plan, const ExactIndices& exact, Analysis& an);
 
+struct DesignOutputs;
+/// Second-order indices of one output (sensitivity_sobol_second.cpp): table rows, indices.csv rows
+/// ("i:j", S2) and, for test functions, the checks against the exact S_ij.
+void second_order_rows(const DesignOutputs& y, const ExactIndices& exact, const std::string& yname, const std::string& tsuffix,
+                       nlohmann::json& rows, Analysis& an);
+
 // ---- Sobol' against a test function (sensitivity_sobol_checks.cpp) ----
 
 /// The Sobol' estimators' inputs for a test function on Saltelli's design of n rows, transformed.
 struct DesignOutputs {
   std::vector<double> fa, fb;
-  std::vector<std::vector<double>> fab;
+  std::vector<std::vector<double>> fab, fba;  // fba: second order only
 };
-DesignOutputs function_on_design(const Sens& s, std::size_t n, Transform transform);
+/// scramble: the Owen scrambling's seed (0: the study's own).
+DesignOutputs function_on_design(const Sens& s, std::size_t n, Transform transform, std::uint64_t scramble = 0);
 
 /// Test functions: the bootstrap interval's width against the central limit theorem.
 void check_interval_widths(const SobolIndices& si, Transform transform, const std::string& tsuffix, Analysis& an);

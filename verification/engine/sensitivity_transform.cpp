@@ -19,11 +19,14 @@ std::string transformed_label(Transform t, const std::string& output) {
   return t == Transform::log ? "ln(" + output + ")" : t == Transform::rank ? "rank(" + output + ")" : output;
 }
 
-void apply_transform(Transform t, std::vector<double>& fa, std::vector<double>& fb, std::vector<std::vector<double>>& fab) {
+void apply_transform(Transform t, std::vector<double>& fa, std::vector<double>& fb, std::vector<std::vector<double>>& fab,
+                     std::vector<std::vector<double>>& fba) {
   std::vector<double*> all;
   for (double& y : fa) all.push_back(&y);
   for (double& y : fb) all.push_back(&y);
   for (auto& c : fab)
+    for (double& y : c) all.push_back(&y);
+  for (auto& c : fba)
     for (double& y : c) all.push_back(&y);
   if (t == Transform::log) {
     for (double* y : all) *y = *y > 0.0 ? std::log(*y) : std::nan("");

@@ -20,7 +20,13 @@ std::string transform_name(Transform t);
 /// How the transformed output of `output` reads in a title: "x_0.2", "ln(x_0.2)", "rank(x_0.2)".
 std::string transformed_label(Transform t, const std::string& output);
 
-/// Transforms f(A), f(B) and each f(AB_i) in place (NaN stays NaN, see above).
-void apply_transform(Transform t, std::vector<double>& fa, std::vector<double>& fb, std::vector<std::vector<double>>& fab);
+/// Transforms f(A), f(B), each f(AB_i) and each f(BA_i) (second order; may be empty) in place,
+/// ranks over all of them pooled (NaN stays NaN, see above).
+void apply_transform(Transform t, std::vector<double>& fa, std::vector<double>& fb, std::vector<std::vector<double>>& fab,
+                     std::vector<std::vector<double>>& fba);
+inline void apply_transform(Transform t, std::vector<double>& fa, std::vector<double>& fb, std::vector<std::vector<double>>& fab) {
+  std::vector<std::vector<double>> none;
+  apply_transform(t, fa, fb, fab, none);
+}
 
 }  // namespace ver::sens
