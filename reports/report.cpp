@@ -1,4 +1,5 @@
 // write_report: read the studies, render their plots with gnuplot, write index.html and index.md.
+#include "dem/run/output_files.hpp"
 #include "report.hpp"
 
 #include <fmt/format.h>
@@ -36,17 +37,14 @@ void remove_old_figures(const fs::path& figures_dir) {
   std::error_code ignored;
   for (const auto& entry : fs::directory_iterator(figures_dir, ignored)) {
     const auto extension = entry.path().extension();
-    if (entry.is_regular_file() && (extension == ".svg" || extension == ".gp" || extension == ".png"))
+    if (entry.is_regular_file() && (extension == ".svg" || extension == ".gp" || extension == ".png" || extension == ".partial"))
       fs::remove(entry.path(), ignored);
   }
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();  // a full disk shows only when the buffer is written out
-  if (!out) throw std::runtime_error("report: cannot write " + path.string());
-}
+// Through a temporary name and a rename (output_files.hpp): a full disk leaves the previous file whole, and
+// the error (dem::OutputError) is exit status 4.
+void write_text(const fs::path& path, const std::string& text) { dem::write_file_atomic(path, text); }
 
 // Renders one plot (if any) into out_dir/file; the figure's note says what happened otherwise.
 class FigureRenderer {

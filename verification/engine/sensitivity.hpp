@@ -17,4 +17,8 @@ namespace ver {
 /// and StudyInterrupted for SIGINT / SIGTERM.
 StudyResult run_sensitivity(const std::filesystem::path& study_file, const StudyOptions& opt);
 
+/// Reads and checks a sensitivity file (its keys and the parameters' ranges against the base case)
+/// without running anything: what `dem2d sweep` refuses before it starts (the fuzz target's path).
+void check_sensitivity_file(const std::filesystem::path& study_file);
+
 }  // namespace ver
