@@ -2,9 +2,9 @@
 // checkpoint without its last 8 bytes; the target appends the checksum, so every mutation reaches the
 // field checks instead of stopping at "checksum mismatch" — a crafted file, as a user could make one. It
 // is restarted as `dem2d run --restart` would (tests/lib/fixtures/restart_disks.toml, 20 steps past
-// the checkpoint of the seed, no output folder). Accepted: a run, or a dem::OutputError / dem::CaseError
+// the seed checkpoint (step 4000), no output folder). Accepted: a run, or a dem::OutputError / dem::CaseError
 // that names the checkpoint file. Anything else is a finding (another exception, a crash, a sanitizer
-// report). Seed: fuzz/corpus/checkpoint/ (the case's checkpoint at step 1000, 2.8 kB).
+// report). Seed: fuzz/corpus/checkpoint/ (the case at step 4000, with contacts).
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -24,7 +24,7 @@ using fuzz::finding;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const dem::Case base = dem::read_case(std::filesystem::path(DEM2D_SOURCE_DIR) / "tests/lib/fixtures/restart_disks.toml",
-                                               {"numerics.duration=0.0102", "output.vtk=false"});
+                                               {"numerics.duration=0.0402", "output.vtk=false"});
   std::string bytes(reinterpret_cast<const char*>(data), size);
   const std::uint64_t sum = dem::checkpoint_checksum(bytes);
   bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
