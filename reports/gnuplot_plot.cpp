@@ -255,7 +255,8 @@ PlotOutcome render_svg(const Plot& plot, const std::filesystem::path& svg_file,
                        const std::filesystem::path& gnuplot) {
   // gnuplot draws into <name>.svg.partial by a script of its own; only a complete SVG is renamed into place,
   // and the script kept beside it (<name>.gp, to rerun by hand) names the final file. Nothing half written
-  // ever has the final name.
+  // ever has the final name, and a failure leaves the previous report's figure (the report removes figures
+  // it did not write once its index files are in place).
   PlotOutcome outcome;
   const auto svg_path = std::filesystem::absolute(svg_file);
   const auto folder = svg_path.parent_path();
@@ -266,12 +267,11 @@ PlotOutcome render_svg(const Plot& plot, const std::filesystem::path& svg_file,
   auto log_path = svg_path;
   log_path.replace_extension(".log");
   std::error_code ignored;
-  std::filesystem::remove(svg_path, ignored);
-  std::filesystem::remove(partial_svg, ignored);
+  std::filesystem::remove(partial_svg, ignored);  // the previous report's svg_path stays until this one replaces it
   auto fail = [&](std::string why) {
     outcome.error = std::move(why);
     outcome.svg.clear();
-    for (const auto& f : {partial_svg, run_script, svg_path}) std::filesystem::remove(f, ignored);
+    for (const auto& f : {partial_svg, run_script}) std::filesystem::remove(f, ignored);
     return outcome;
   };
   {

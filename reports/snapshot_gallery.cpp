@@ -1,5 +1,4 @@
 // Snapshot galleries (snapshot_gallery.hpp).
-#include "dem/run/output_files.hpp"
 #include "snapshot_gallery.hpp"
 
 #include <fmt/format.h>
@@ -9,6 +8,7 @@
 #include <system_error>
 
 #include "text_format.hpp"
+#include "dem/run/output_files.hpp"
 
 namespace report {
 
