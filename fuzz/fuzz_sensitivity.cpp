@@ -1,7 +1,7 @@
 // libFuzzer target: sensitivity files (verification/engine/sensitivity.hpp, `dem2d sweep`). The input is a
 // sensitivity.toml, read and checked (keys, parameter ranges against the base case) as `dem2d sweep` does
 // before any run; placed like fuzz_study's input so that "../../cases/…" reaches the base case. Accepted:
-// nothing thrown, or an error whose message starts with the file ("file:line: …"). Anything else is a
+// nothing thrown, or an error whose message names the file's line ("file:line: …"). Anything else is a
 // finding. Seeds: fuzz/corpus/sensitivity/.
 #include <string>
 #include <string_view>
@@ -16,7 +16,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     ver::check_sensitivity_file(file);
   } catch (const std::runtime_error& e) {
     const std::string_view msg = e.what();
-    if (!msg.starts_with(file.string() + ":") && !msg.starts_with("--set "))
+    // located: at the file's line, in front ("file:line: …") or behind ("file not found: … (from file:line)")
+    if (msg.find(file.string() + ":") == std::string_view::npos && !msg.starts_with("--set "))
       fuzz::finding("error without the sensitivity file: " + std::string(msg));
     if (msg.starts_with(file.string() + ":0:")) fuzz::finding("error at line 0: " + std::string(msg));
   } catch (const std::exception& e) {
