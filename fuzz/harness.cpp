@@ -26,10 +26,6 @@ void remove_scratch() {
   std::filesystem::remove(scratch_file(), ec);
 }
 
-[[noreturn]] void finding(const std::string& what) {
-  std::fprintf(stderr, "\nFUZZ FINDING: %s\n", what.c_str());
-  std::abort();
-}
 
 constexpr std::size_t kMaxCheckedElements = 2000;
 constexpr std::ptrdiff_t kMaxCheckedPres = 100;
@@ -44,6 +40,33 @@ const std::filesystem::path& scratch_file() {
     return make_scratch();
   }();
   return p;
+}
+
+void finding(const std::string& what) {
+  std::fprintf(stderr, "\nFUZZ FINDING: %s\n", what.c_str());
+  std::abort();
+}
+
+namespace {
+std::filesystem::path scratch_root() {
+  return scratch_file().parent_path() / ("dem2d_fuzz_" + std::to_string(::getpid()) + ".d");
+}
+void remove_scratch_root() {
+  std::error_code ec;
+  std::filesystem::remove_all(scratch_root(), ec);  // the link, not what it points to
+}
+}  // namespace
+
+std::filesystem::path scratch_beside_cases(const std::string& name) {
+  static const std::filesystem::path dir = [] {
+    const std::filesystem::path root = scratch_root();
+    std::filesystem::create_directories(root / "verification" / "fuzz");
+    std::error_code ec;
+    std::filesystem::create_directory_symlink(std::filesystem::path(DEM2D_SOURCE_DIR) / "cases", root / "cases", ec);
+    std::atexit(remove_scratch_root);
+    return root / "verification" / "fuzz";
+  }();
+  return dir / name;
 }
 
 void write_file(const std::filesystem::path& path, const std::uint8_t* data, std::size_t size) {

@@ -15,6 +15,14 @@ namespace fuzz {
 /// A scratch file for this process (under /dev/shm when it exists), removed at exit.
 const std::filesystem::path& scratch_file();
 
+/// A scratch file `name` two folders below a scratch root for this process whose `cases` is a link to the
+/// repository's cases/ (removed at exit): a study or sensitivity file there reaches its base case by the
+/// "../../cases/…" path the files in verification/<study>/ use.
+std::filesystem::path scratch_beside_cases(const std::string& name);
+
+/// Aborts with "FUZZ FINDING: what" (libFuzzer keeps the input).
+[[noreturn]] void finding(const std::string& what);
+
 /// Writes `size` bytes to `path` (replacing it).
 void write_file(const std::filesystem::path& path, const std::uint8_t* data, std::size_t size);
 

@@ -4,6 +4,9 @@
 #include "text_format.hpp"
 
 #include <fmt/format.h>
+#include <cstdio>
+#include <string_view>
+#include "dem/run/output_files.hpp"
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -237,45 +240,71 @@ std::string gnuplot_script(const Plot& plot, const std::filesystem::path& svg_fi
   return s;
 }
 
+namespace {
+
+// A whole SVG document: it opens and closes (gnuplot on a full disk leaves one cut at a buffer's end).
+bool complete_svg(const std::string& svg) {
+  std::size_t end = svg.size();
+  while (end > 0 && std::isspace(static_cast<unsigned char>(svg[end - 1]))) --end;
+  return svg.find("<svg") != std::string::npos && std::string_view(svg).substr(0, end).ends_with("</svg>");
+}
+
+}  // namespace
+
 PlotOutcome render_svg(const Plot& plot, const std::filesystem::path& svg_file,
                        const std::filesystem::path& gnuplot) {
+  // gnuplot draws into <name>.svg.partial by a script of its own; only a complete SVG is renamed into place,
+  // and the script kept beside it (<name>.gp, to rerun by hand) names the final file. Nothing half written
+  // ever has the final name, and a failure leaves the previous report's figure (the report removes figures
+  // it did not write once its index files are in place).
   PlotOutcome outcome;
   const auto svg_path = std::filesystem::absolute(svg_file);
   const auto folder = svg_path.parent_path();
+  const auto partial_svg = folder / (svg_path.filename().string() + ".partial");
+  const auto run_script = folder / (svg_path.stem().string() + ".gp.partial");
   auto script_path = svg_path;
   script_path.replace_extension(".gp");
   auto log_path = svg_path;
   log_path.replace_extension(".log");
   std::error_code ignored;
-  std::filesystem::remove(svg_path, ignored);
+  std::filesystem::remove(partial_svg, ignored);  // the previous report's svg_path stays until this one replaces it
+  auto fail = [&](std::string why) {
+    outcome.error = std::move(why);
+    outcome.svg.clear();
+    for (const auto& f : {partial_svg, run_script}) std::filesystem::remove(f, ignored);
+    return outcome;
+  };
   {
-    std::ofstream script(script_path, std::ios::binary);
-    script << gnuplot_script(plot, svg_path.filename());  // relative: gnuplot runs in its folder
-    if (!script) {
-      outcome.error = "cannot write " + script_path.string();
-      return outcome;
-    }
+    std::ofstream script(run_script, std::ios::binary);
+    script << gnuplot_script(plot, partial_svg.filename());  // relative: gnuplot runs in its folder
+    script.close();
+    if (!script) return fail("cannot write " + run_script.string());
   }
   // A bare name ("gnuplot") is looked up on PATH; a path is made absolute before the cd.
   const std::string program =
       gnuplot.has_parent_path() ? std::filesystem::absolute(gnuplot).string() : gnuplot.string();
   const std::string command = "cd " + shell_quote(folder.string()) + " && " + shell_quote(program) +
-                              " " + shell_quote(script_path.filename().string()) + " > " +
+                              " " + shell_quote(run_script.filename().string()) + " > " +
                               shell_quote(log_path.string()) + " 2>&1";
   const int status = std::system(command.c_str());
   const int exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;  // -1: killed by a signal
   const std::string log = read_text_file(log_path);
   std::filesystem::remove(log_path, ignored);
-  outcome.svg = read_text_file(svg_path);
-  if (exit_code != 0 || outcome.svg.find("<svg") == std::string::npos) {
-    outcome.error = fmt::format("gnuplot failed (exit code {}){}{}", exit_code,
-                                log.empty() ? "" : ": ", log.substr(0, 500));
-    while (!outcome.error.empty() && std::isspace(static_cast<unsigned char>(outcome.error.back())))
-      outcome.error.pop_back();
-    outcome.svg.clear();
-    std::filesystem::remove(svg_path, ignored);
-    return outcome;
+  std::filesystem::remove(run_script, ignored);
+  outcome.svg = read_text_file(partial_svg);
+  if (exit_code != 0 || !complete_svg(outcome.svg)) {
+    std::string why = fmt::format("gnuplot failed (exit code {}){}{}", exit_code, log.empty() ? "" : ": ", log.substr(0, 500));
+    if (exit_code == 0) why = fmt::format("gnuplot wrote an incomplete SVG ({} bytes, no closing </svg>: a full disk?)", outcome.svg.size());
+    while (!why.empty() && std::isspace(static_cast<unsigned char>(why.back()))) why.pop_back();
+    return fail(why);
   }
+  try {
+    dem::write_file_atomic(script_path, gnuplot_script(plot, svg_path.filename()), false);
+  } catch (const std::exception& e) {
+    return fail(e.what());
+  }
+  if (std::rename(partial_svg.c_str(), svg_path.c_str()) != 0)
+    return fail("cannot rename " + partial_svg.string() + " to " + svg_path.filename().string());
   outcome.ok = true;
   return outcome;
 }

@@ -19,6 +19,7 @@
 #include "study_plots.hpp"
 #include "study_result.hpp"
 #include "text_format.hpp"
+#include "dem/run/output_files.hpp"
 
 #ifndef GNUPLOT_EXECUTABLE
 #define GNUPLOT_EXECUTABLE "gnuplot"
@@ -32,22 +33,22 @@ namespace fs = std::filesystem;
 
 constexpr const char* default_title = "DEM verification report";
 
-// Files this generator writes into figures/ (earlier runs' leftovers would be linked by nobody).
-void remove_old_figures(const fs::path& figures_dir) {
+// Files this generator writes into figures/ that this report does not link (an earlier report's, linked by
+// nobody once the new index files are in place; removed after them, so that a report that fails half-way
+// leaves the previous one whole with its figures). `keep`: the names written this time.
+void remove_old_figures(const fs::path& figures_dir, const std::set<std::string>& keep) {
   std::error_code ignored;
   for (const auto& entry : fs::directory_iterator(figures_dir, ignored)) {
     const auto extension = entry.path().extension();
-    if (entry.is_regular_file() && (extension == ".svg" || extension == ".gp" || extension == ".png"))
+    if (entry.is_regular_file() && (extension == ".svg" || extension == ".gp" || extension == ".png" || extension == ".partial") &&
+        !keep.count(entry.path().filename().string()))
       fs::remove(entry.path(), ignored);
   }
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();  // a full disk shows only when the buffer is written out
-  if (!out) throw std::runtime_error("report: cannot write " + path.string());
-}
+// Through a temporary name and a rename (output_files.hpp): a full disk leaves the previous file whole, and
+// the error (dem::OutputError) is exit status 4.
+void write_text(const fs::path& path, const std::string& text) { dem::write_file_atomic(path, text); }
 
 // Renders one plot (if any) into out_dir/file; the figure's note says what happened otherwise.
 class FigureRenderer {
@@ -70,15 +71,19 @@ class FigureRenderer {
       return figure;
     }
     figure.file = file;
+    written_.insert(fs::path(file).filename().string());
+    written_.insert(fs::path(file).replace_extension(".gp").filename().string());
     figure.svg = outcome.svg;
     figure.note = note;
     ++figures_written_;
     return figure;
   }
   int figures_written() const { return figures_written_; }
+  std::set<std::string>& written() { return written_; }  // file names in figures/
 
  private:
   fs::path out_dir_, gnuplot_;
+  std::set<std::string> written_;
   int figures_written_ = 0;
 };
 
@@ -133,8 +138,9 @@ Written write_report(const Options& options, const fs::path& gnuplot) {
     throw std::runtime_error("report: studies folder not found: " + options.studies_dir.string());
   const auto claims = options.claims_file.empty() ? std::vector<PaperClaim>{} : read_paper_claims(options.claims_file);
   const fs::path figures_dir = options.out_dir / "figures";
-  fs::create_directories(figures_dir);
-  remove_old_figures(figures_dir);
+  std::error_code made;
+  fs::create_directories(figures_dir, made);
+  if (made) throw dem::OutputError(fmt::format("{}: cannot create the report folder: {}", figures_dir.string(), made.message()));
 
   auto studies = read_study_results(options.studies_dir);
   ReportContent content;
@@ -182,6 +188,7 @@ Written write_report(const Options& options, const fs::path& gnuplot) {
     std::string link;
     if (!speed->plot_svg.empty()) {  // the Markdown twin links its copy, as it does the studies' figures
       write_text(figures_dir / "speed_cost.svg", speed->plot_svg);
+      renderer.written().insert("speed_cost.svg");
       link = "figures/speed_cost.svg";
     }
     content.speed_html = speed_html(*speed);
@@ -189,6 +196,10 @@ Written write_report(const Options& options, const fs::path& gnuplot) {
   }
   write_text(written.html, link_citations(html_page(content), docs));
   write_text(written.markdown, markdown_page(content));
+  for (const StudyReport& study : content.studies)
+    for (const auto& picture : study.snapshots)
+      if (!picture.file.empty()) renderer.written().insert(fs::path(picture.file).filename().string());
+  remove_old_figures(figures_dir, renderer.written());
   written.studies = static_cast<int>(content.studies.size());
   written.figures = renderer.figures_written();
   return written;

@@ -31,7 +31,8 @@ struct Written {
   std::vector<std::string> claim_errors;  // claims whose selector or figure matches nothing in a present result
 };
 
-// Throws std::runtime_error if studies_dir is not a directory or the outputs cannot be written, and
+// Throws std::runtime_error if studies_dir is not a directory, dem::OutputError (exit status 4) if the outputs
+// cannot be written (each file goes through a temporary name: the previous one stays whole), and
 // dem::CaseError for a claims file that does not read (nothing is written then). A claim that does not
 // match a present result is shown in its row and listed in Written::claim_errors, not thrown.
 // Malformed result files and failed gnuplot calls are reported in the page (and on stderr), not

@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "text_format.hpp"
+#include "dem/run/output_files.hpp"
 
 namespace report {
 
@@ -92,9 +93,11 @@ std::vector<SnapshotPicture> load_snapshots(const StudyResult& study, const fs::
     if (bytes.size() >= 24)  // IHDR: the width, big-endian, after the signature, length and type
       for (int i = 16; i < 20; ++i) p.width = p.width * 256 + static_cast<unsigned char>(bytes[i]);
     p.file = fmt::format("figures/{}-snapshot-{}.png", stem, k + 1);
-    std::error_code ec;
-    fs::copy_file(file, out_dir / p.file, fs::copy_options::overwrite_existing, ec);
-    if (ec) p.file.clear();  // the page still shows it; index.md names it as not copied
+    try {
+      dem::write_file_atomic(out_dir / p.file, bytes, false);  // never a cut copy under the final name
+    } catch (const dem::OutputError&) {
+      p.file.clear();  // the page still shows it; index.md names it as not copied
+    }
     out.push_back(std::move(p));
   }
   return out;

@@ -1,28 +1,38 @@
 #!/usr/bin/env bash
 # Fuzzes the input boundary with libFuzzer (fuzz/README.md): fuzz_case (whole case text → read_case +
-# check_case) and fuzz_override (--set strings on a fixed case), built in build-san/ with ASan + UBSan.
-#   scripts/fuzz.sh --minutes 30        30 minutes in all, split evenly over the targets (the long run)
-#   scripts/fuzz.sh --seconds 60        60 s per target (CI)
+# check_case), fuzz_override (--set strings on a fixed case), fuzz_checkpoint (crafted checkpoints restarted),
+# fuzz_study and fuzz_sensitivity (study and sensitivity files) and fuzz_result (result.json → the report),
+# built in build-san/ with ASan + UBSan.
+#   scripts/fuzz.sh --minutes 30        30 minutes in all, split over the targets by their weights (the long run)
+#   scripts/fuzz.sh --seconds 120       120 s for case and override, 3/8 of it (45 s) for each of the four
+#                                       others: 7 minutes in all (CI)
 #   scripts/fuzz.sh --runs 20000        a fixed number of inputs per target (repeatable)
-#   --target case|override              one target only
-# The seeds are cases/, tests/lib/fixtures/ and fuzz/corpus/override/ (read only); what libFuzzer learns goes
+#   --target NAME                       one target only (case, override, checkpoint, study, sensitivity, result)
+# The seeds are cases/, tests/lib/fixtures/ and fuzz/corpus/<target>/ (read only); what libFuzzer learns goes
 # to build-san/fuzz-work/<target>/. A finding (crash, sanitizer report, unlocated error) is written to
 # build-san/fuzz-findings/<target>/ and the script fails: fix it, then copy the input into
 # fuzz/regression/<target>/ so that ctest replays it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-per_target_seconds=60; runs=""; targets=(case override)
+per_target_seconds=60; runs=""; targets=(case override checkpoint study sensitivity result)
 while [ $# -gt 0 ]; do
   case "$1" in
     --minutes) total=$(( $2 * 60 )); shift 2; per_target_seconds=-1 ;;
     --seconds) per_target_seconds=$2; shift 2 ;;
     --runs) runs=$2; shift 2 ;;
     --target) targets=("$2"); shift 2 ;;
-    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
     *) echo "fuzz.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
 done
-[ "$per_target_seconds" -lt 0 ] && per_target_seconds=$(( total / ${#targets[@]} ))
+# Weights in eighths: the case reader and --set get 8, the newer targets 3 (small inputs, shallow readers).
+weight() { case "$1" in case|override) echo 8 ;; *) echo 3 ;; esac; }
+if [ "$per_target_seconds" -lt 0 ]; then
+  sum=0; for t in "${targets[@]}"; do sum=$(( sum + $(weight "$t") )); done
+  unit_seconds=$(( total * 8 / sum ))  # the seconds of a weight-8 target
+else
+  unit_seconds=$per_target_seconds
+fi
 
 bash scripts/setup.sh
 if [ ! -f build-san/CMakeCache.txt ]; then
@@ -40,14 +50,16 @@ for t in "${targets[@]}"; do
   work=build-san/fuzz-work/$t; findings=build-san/fuzz-findings/$t
   mkdir -p "$work" "$findings"
   if [ "$t" = case ]; then seeds=(cases tests/lib/fixtures fuzz/regression/case)
-  else seeds=(fuzz/corpus/override fuzz/regression/override); fi
-  limit=(-max_total_time="$per_target_seconds")
+  else seeds=(fuzz/corpus/"$t"); [ -d fuzz/regression/"$t" ] && seeds+=(fuzz/regression/"$t"); fi
+  dict=(); case "$t" in case|override|study|sensitivity) dict=(-dict=fuzz/case.dict) ;; esac
+  seconds=$(( unit_seconds * $(weight "$t") / 8 )); [ "$seconds" -lt 1 ] && seconds=1
+  limit=(-max_total_time="$seconds")
   [ -n "$runs" ] && limit=(-runs="$runs")
   # -timeout: one input may take at most 10 s; -rss_limit_mb: 2 GB (a machine shared by many)
   log=build-san/fuzz-$t.log
   echo "fuzz: $t (${limit[*]})"
   if build-san/fuzz/fuzz_"$t" "${limit[@]}" -timeout=10 -rss_limit_mb=2048 -max_len=16384 \
-       -dict=fuzz/case.dict -print_final_stats=1 -artifact_prefix="$findings/" \
+       "${dict[@]}" -print_final_stats=1 -artifact_prefix="$findings/" \
        "$work" "${seeds[@]}" > "$log" 2>&1; then
     runs_done=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
     secs=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")

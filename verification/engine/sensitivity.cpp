@@ -18,6 +18,7 @@
 #include "dem/cases/units.hpp"
 #include "dem/run/output_files.hpp"
 #include "dem/run/run.hpp"
+#include "dem/run/owned_files.hpp"
 #include "engine/progress.hpp"
 #include "engine/run_cache.hpp"
 #include "engine/sensitivity_names.hpp"
@@ -572,6 +573,8 @@ StudyResult analyse_and_write(const Sens& s, const sens::Plan& plan, const fs::p
 
 }  // namespace
 
+void check_sensitivity_file(const fs::path& file) { sens::check_ranges(read_sens(file)); }
+
 StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
   const auto started = std::chrono::steady_clock::now();
   const Sens s = read_sens(file);
@@ -580,7 +583,7 @@ StudyResult run_sensitivity(const fs::path& file, const StudyOptions& opt) {
   const ProgressScope shown(&progress);
   sens::Runner runner{s, out / "cache"};
   const sens::Plan plan = marking_failure(out, s.name, [&] {
-    if (!opt.use_cache) fs::remove_all(runner.cache_dir);
+    if (!opt.use_cache) dem::remove_owned_folder(runner.cache_dir, dem::OwnedFolder::study_cache, "--fresh");
     fs::create_directories(runner.cache_dir);
     sens::check_ranges(s);
     runner.dt_fraction = sens::dt_fraction_of(s);

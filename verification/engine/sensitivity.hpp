@@ -27,4 +27,8 @@ void write_sensitivity_design(const std::filesystem::path& study_file, const Stu
 /// `dem2d sweep` would: the same indices.csv, runs.csv and result.json in <out>.
 StudyResult analyse_sensitivity(const std::filesystem::path& study_file, const std::filesystem::path& outputs_csv, const StudyOptions& opt);
 
+/// Reads and checks a sensitivity file (its keys and the parameters' ranges against the base case)
+/// without running anything: what `dem2d sweep` refuses before it starts (the fuzz target's path).
+void check_sensitivity_file(const std::filesystem::path& study_file);
+
 }  // namespace ver

@@ -10,6 +10,7 @@
 #include "dem/cases/text.hpp"
 #include "dem/run/output_files.hpp"
 #include "dem/run/run.hpp"
+#include "dem/run/owned_files.hpp"
 #include "engine/progress.hpp"
 #include "engine/run_cache.hpp"
 #include "engine/study_file.hpp"
@@ -66,7 +67,8 @@ StudyResult run_marked(const Study& s, const fs::path& file, const fs::path& out
   Progress progress("study " + s.name, stderr, opt.print && ::isatty(::fileno(stderr)), opt.verbose);
   const ProgressScope shown(&progress);
   StudyRun run{s, out, opt, out / "cache"};
-  if (!opt.use_cache) fs::remove_all(run.cache_dir);  // --fresh: forget earlier runs, record the new ones
+  // --fresh: forget earlier runs, record the new ones (only cache entries: anything else refuses)
+  if (!opt.use_cache) dem::remove_owned_folder(run.cache_dir, dem::OwnedFolder::study_cache, "--fresh");
   fs::create_directories(run.cache_dir);
 
   if (s.kind == Kind::single || s.kind == Kind::refinement) run_levels(run);

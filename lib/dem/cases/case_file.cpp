@@ -1,3 +1,4 @@
+#include "dem/cases/extent.hpp"
 #include "dem/cases/case_file.hpp"
 
 #include <algorithm>
@@ -100,6 +101,11 @@ void apply_override(toml::table& root, const std::string& kv) {
 // Element limit of one case: ~0.6 kB per element (its arrays, neighbour candidates and about three
 // contact slots), so 2e7 elements need about 12 GB.
 constexpr std::int64_t kMaxElements = 20'000'000;
+
+/// Refuses a point (a disk of `radius` at it) outside the represented extent (extent.hpp), at `key`.
+void in_extent(const TableReader& r, const std::string& key, Vec2 p, double radius = 0.0) {
+  if (!within_extent(p, radius)) r.fail(key, outside_extent(p, radius));
+}
 constexpr double kBytesPerElement = 600.0;
 
 struct Reader {
@@ -351,6 +357,9 @@ struct Reader {
       const double gap = r.quantity("gap", dims::length, 0.0);
       non_negative(r, "gap", gap);
       if (!(right > left)) r.fail("right", "must be right of left");
+      in_extent(r, "left", {left, 0.0});
+      in_extent(r, "right", {right, 0.0});
+      in_extent(r, "floor", {0.0, floor});
       if (r.has("rows") == r.has("count_near")) r.fail_here("give exactly one of rows or count_near (the row count whose disk count is nearest)");
       int rows = 0;
       try {
@@ -382,6 +391,7 @@ struct Reader {
           p.x += jitter * (2.0 * rng.uniform() - 1.0);
           p.y += jitter * (2.0 * rng.uniform() - 1.0);
         }
+        in_extent(r, "rows", p, ec.radius);
         place(ec, p, 0.0, -1);
       }
       return;
@@ -427,6 +437,11 @@ struct Reader {
       return Vec2{r.quantity_of(*p->get(0), "region", dims::length), r.quantity_of(*p->get(1), "region", dims::length)};
     };
     const Vec2 lo = corner(0), hi = corner(1);
+    in_extent(r, "region", lo);
+    in_extent(r, "region", hi);
+    if (std::max(hi.x - lo.x, hi.y - lo.y) > kMaxFillCells * (2.0 * dist.largest()))
+      r.fail("region", fmt::format("spans more than {:g} disk diameters ({:.6g} m for a largest radius of {:.6g} m)",
+                                   kMaxFillCells, std::max(hi.x - lo.x, hi.y - lo.y), dist.largest()));
     const auto count = r.integer("count", 1, kMaxElements);
     room_for(r, "count", count);
     const auto seed = static_cast<std::uint64_t>(r.integer("seed", 0, std::numeric_limits<std::int64_t>::max()));
@@ -625,6 +640,7 @@ void Reader::read_elements(const TableReader& top) {
   each(top, "element", [&](TableReader& r, std::size_t) {
     const auto ec = common(r);
     const Vec2 pos = r.vector("position", dims::length);
+    in_extent(r, "position", pos, ec.radius);
     const double rot = r.quantity("rotation", dims::angle, 0.0);
     const std::size_t idx = place(ec, pos, rot, -1);
     if (const toml::table* pt = r.table("preload")) {
@@ -656,6 +672,8 @@ void Reader::read_lattices(const TableReader& top) {
     const Vec2 far = origin + ex * (spacing * static_cast<double>(nx - 1)) + ey * (spacing * static_cast<double>(ny - 1));
     if (!std::isfinite(far.x) || !std::isfinite(far.y))
       r.fail("spacing", fmt::format("the lattice reaches a position that is not a finite number ({}, {})", far.x, far.y));
+    in_extent(r, "origin", origin, ec.radius);
+    in_extent(r, "spacing", far, ec.radius);
     for (std::int64_t b = 0; b < ny; ++b)
       for (std::int64_t a = 0; a < nx; ++a)
         place(ec, origin + ex * (spacing * a) + ey * (spacing * b), rot, group);
@@ -674,6 +692,8 @@ void Reader::read_rows(const TableReader& top) {
     const Vec2 far = start + step * static_cast<double>(n - 1);
     if (!std::isfinite(far.x) || !std::isfinite(far.y))
       r.fail("step", fmt::format("the row reaches a position that is not a finite number ({}, {})", far.x, far.y));
+    in_extent(r, "start", start, ec.radius);
+    in_extent(r, "step", far, ec.radius);
     for (std::int64_t k = 0; k < n; ++k) place(ec, start + step * static_cast<double>(k), 0.0, -1);
   });
 }
@@ -689,9 +709,12 @@ void Reader::read_walls(const TableReader& top) {
     if (w.kind == WallKind::segment) {
       w.a = r.vector("from", dims::length);
       w.b = r.vector("to", dims::length);
+      in_extent(r, "from", w.a);
+      in_extent(r, "to", w.b);
       if (w.a == w.b) r.fail("to", "a segment wall needs two different end points");
     } else {
       w.a = w.b = r.vector("at", dims::length);
+      in_extent(r, "at", w.a);
     }
     w.material = material(r, "material");
     if (r.has("drive")) {

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "dem/run/checkpoint_checks.hpp"
 #include "dem/run/output_files.hpp"
 #include "dem/run/run.hpp"
 
@@ -68,6 +69,11 @@ struct Reader {
     pos += sizeof v;
     return v;
   }
+  bool get_bool(const std::string& field) {  // a bool is read as its byte: any other value than 0 or 1 is refused
+    const auto b = get<std::uint8_t>();
+    check_flag(what, field, b);
+    return b != 0;
+  }
   std::string get_str() {
     const auto n = get<std::uint64_t>();
     if (n > in.size() - pos) throw OutputError(fmt::format("{}: truncated checkpoint", what));
@@ -92,7 +98,7 @@ void get_slot(Reader& r, LinearSlot& s) {
   s.i = r.get<std::uint32_t>(), s.j = r.get<std::uint32_t>(), s.law = r.get<std::int32_t>();
   s.touching = r.get<std::uint8_t>(), s.eta_n = r.get<double>(), s.eta_s = r.get<double>();
   s.h.en = r.get<double>(), s.h.es = r.get<double>(), s.f.fn = r.get<double>(), s.f.fs = r.get<double>();
-  s.f.opened = r.get<bool>(), s.nx = r.get<double>(), s.ny = r.get<double>();
+  s.f.opened = r.get_bool("linear wall slot opened"), s.nx = r.get<double>(), s.ny = r.get<double>();
 }
 void put_slot(Writer& w, const FaceSlot& s) {
   w.put(s.i), w.put(s.j), w.put(s.law), w.put(s.touching);
@@ -112,7 +118,7 @@ void get_slot(Reader& r, FaceSlot& s) {
     g.linked = r.get<std::uint8_t>(), g.intact = r.get<std::uint8_t>();
   }
   s.f.p = r.get<double>(), s.f.q = r.get<double>(), s.f.p_moment = r.get<double>(), s.f.links = r.get<int>();
-  s.f.any_tensile = r.get<bool>(), s.nx = r.get<double>(), s.ny = r.get<double>();
+  s.f.any_tensile = r.get_bool("face slot any_tensile"), s.nx = r.get<double>(), s.ny = r.get<double>();
 }
 // The linear element–element slots: the fields of a LinearSlot but ContactForce::opened (always false in
 // a stored slot: a contact that opens is reset at once).
@@ -183,50 +189,75 @@ struct SimulationAccess {
   }
 
   static void read(Simulation& sim, const Checkpoint& ck, bool other_case) {
-    Reader r{ck.state, 0, ck.case_path};
+    const std::string& file = ck.file;
+    Reader r{ck.state, 0, file};
     Elements& e = sim.m_.elements;
     const auto n = r.get<std::uint64_t>();
     if (n != e.size())
-      throw CaseError(fmt::format("restart: the checkpoint has {} elements, the case {}", n, e.size()));
+      throw CaseError(fmt::format("{}: restart: the checkpoint has {} elements, the case {}", file, n, e.size()));
     {  // the elements take the checkpoint's order first (their properties come from the case)
       std::vector<std::uint32_t> ids;
       r.get_vec(ids);
       try {
         sim.restore_order(ids);
       } catch (const std::invalid_argument& x) {
-        throw OutputError(fmt::format("{}: corrupt checkpoint ({})", ck.case_path, x.what()));
+        throw OutputError(fmt::format("{}: corrupt checkpoint ({})", file, x.what()));
       }
     }
     for (auto* v : {&e.x, &e.y, &e.phi, &e.dx, &e.dy, &e.dphi, &e.vx, &e.vy, &e.omega, &e.fx, &e.fy, &e.moment}) {
       r.get_vec(*v);
-      if (v->size() != n) throw OutputError(fmt::format("{}: corrupt checkpoint (element arrays)", ck.case_path));
+      if (v->size() != n) throw OutputError(fmt::format("{}: corrupt checkpoint (element arrays)", file));
     }
     r.get_vec(e.active);
+    check_element_state(file, e);
     const auto nw = r.get<std::uint64_t>();
     if (nw != sim.m_.walls.size())
-      throw CaseError(fmt::format("restart: the checkpoint has {} walls, the case {}", nw, sim.m_.walls.size()));
+      throw CaseError(fmt::format("{}: restart: the checkpoint has {} walls, the case {}", file, nw, sim.m_.walls.size()));
     for (Wall& wl : sim.m_.walls) wl.a = r.get<Vec2>(), wl.b = r.get<Vec2>(), wl.increment = r.get<Vec2>(), wl.force = r.get<Vec2>();
-    r.get_vec(sim.candidates_);
-    get_slots(r, sim.linear_pairs_);
-    get_slots(r, sim.linear_walls_);
-    get_slots(r, sim.face_pairs_);
-    get_slots(r, sim.face_walls_);
-    r.get_vec(sim.x_ref_);
-    r.get_vec(sim.y_ref_);
-    r.get_vec(sim.wall_ref_);
+    check_wall_state(file, sim.m_.walls);
+    read_contacts(sim, r, !other_case);
+    check_references(file, sim.x_ref_, sim.y_ref_, sim.wall_ref_, n, nw);
     sim.skin_ = r.get<double>(), sim.time_ = r.get<double>(), sim.step_ = r.get<std::int64_t>();
-    sim.rebuilds_ = r.get<std::int64_t>(), sim.preloading_ = r.get<bool>();
+    sim.rebuilds_ = r.get<std::int64_t>(), sim.preloading_ = r.get_bool("preloading");
+    check_clock(sim, ck);
     sim.tested_step_ = -1;  // the next step makes its own rebuild test
     sim.travel_ = Simulation::kTravelUnknown;  // not saved: the exact rebuild test until the next rebuild
     sim.forces_step_ = sim.step_;  // the contact resultants were saved with the step (write_state)
-    if (r.pos != r.in.size()) throw OutputError(fmt::format("{}: corrupt checkpoint (trailing state bytes)", ck.case_path));
-    if (other_case) start_other_case(sim);
+    if (r.pos != r.in.size()) throw OutputError(fmt::format("{}: corrupt checkpoint (trailing state bytes)", file));
+    if (other_case) start_other_case(sim, file);
     // derived from the slot lists (not saved): made once they are final, since another case may drop wall
     // slots (the sweep's shares and the contact index would otherwise still count them)
     sim.index_contacts();
   }
+  // The candidate pairs and the four slot lists, each checked (checkpoint_checks.hpp; their laws only for the
+  // same case: another case gives them its own, start_other_case), then the reference positions of the
+  // rebuild test.
+  static void read_contacts(Simulation& sim, Reader& r, bool laws) {
+    const std::string& file = r.what;
+    r.get_vec(sim.candidates_);
+    check_candidates(file, sim.candidates_, sim.m_.elements.size());
+    get_slots(r, sim.linear_pairs_);
+    check_slots(file, sim.linear_pairs_, sim.m_, laws);
+    get_slots(r, sim.linear_walls_);
+    check_slots(file, sim.linear_walls_, sim.m_, laws);
+    get_slots(r, sim.face_pairs_);
+    check_slots(file, sim.face_pairs_, sim.m_, false, laws);
+    get_slots(r, sim.face_walls_);
+    check_slots(file, sim.face_walls_, sim.m_, true, laws);
+    r.get_vec(sim.x_ref_);
+    r.get_vec(sim.y_ref_);
+    r.get_vec(sim.wall_ref_);
+  }
+  // The state's clock: that of the header, a skin and a rebuild count that can be.
+  static void check_clock(const Simulation& sim, const Checkpoint& ck) {
+    if (!std::isfinite(sim.skin_) || sim.skin_ < 0.0) corrupt_checkpoint(ck.file, "skin", fmt::format("{} m", sim.skin_));
+    if (sim.time_ != ck.time || sim.step_ != ck.step)
+      corrupt_checkpoint(ck.file, "clock", fmt::format("step {} at t = {} s, the header says step {} at t = {} s", sim.step_,
+                                                       sim.time_, ck.step, ck.time));
+    if (sim.rebuilds_ < 0) corrupt_checkpoint(ck.file, "rebuilds", fmt::format("{} is negative", sim.rebuilds_));
+  }
   // Another case: each slot takes the new case's law of its material pair, of the same kind.
-  static void start_other_case(Simulation& sim) {
+  static void start_other_case(Simulation& sim, const std::string& file) {
     const Elements& e = sim.m_.elements;
     const Model& m = sim.m_;
     // A wall the new case opens (a silo's slit in discharge) has no contacts: they are dropped.
@@ -239,8 +270,8 @@ struct SimulationAccess {
       const SlotPair p = sim.linear_pairs_.pair[k];
       const std::int32_t law = m.law_index(e.material[p.i], e.material[p.j]);
       if (law < 0 || m.laws[static_cast<std::size_t>(law)].kind != LawKind::linear)
-        throw CaseError(fmt::format("restart: element {} and element {}: the new case has no linear contact law for this pair",
-                                    sim.id_of(p.i), sim.id_of(p.j)));
+        throw CaseError(fmt::format("{}: restart: element {} and element {}: the new case has no linear contact law for this pair",
+                                    file, sim.id_of(p.i), sim.id_of(p.j)));
       sim.linear_pairs_.law[k] = law;
     }
     auto relaw = [&](auto& slots, bool wall, LawKind kind) {
@@ -248,7 +279,7 @@ struct SimulationAccess {
         const std::int32_t mj = wall ? m.walls[s.j].material : e.material[s.j];
         const std::int32_t law = m.law_index(e.material[s.i], mj);
         if (law < 0 || m.laws[static_cast<std::size_t>(law)].kind != kind)
-          throw CaseError(fmt::format("restart: element {} and {} {}: the new case has no {} contact law for this pair", sim.id_of(s.i),
+          throw CaseError(fmt::format("{}: restart: element {} and {} {}: the new case has no {} contact law for this pair", file, sim.id_of(s.i),
                                       wall ? "wall" : "element", wall ? s.j : sim.id_of(s.j), kind == LawKind::linear ? "linear" : "face"));
         s.law = law;
       }
@@ -284,13 +315,15 @@ void write_checkpoint(const std::filesystem::path& file, const Simulation& sim, 
   w.put(sim.dt());
   w.put_str(SimulationAccess::write(sim));
   w.put_vec(loop);
-  w.put(fnv1a(w.out));
+  w.put(checkpoint_checksum(w.out));
   write_file_atomic(file, w.out);
 }
 
-Checkpoint read_checkpoint(const std::filesystem::path& file) {
-  const std::string bytes = read_file(file);
-  const std::string what = file.string();
+std::uint64_t checkpoint_checksum(std::string_view bytes) { return fnv1a(bytes); }
+
+Checkpoint read_checkpoint(const std::filesystem::path& file) { return parse_checkpoint(read_file(file), file.string()); }
+
+Checkpoint parse_checkpoint(std::string_view bytes, const std::string& what) {
   if (bytes.compare(0, sizeof kMagic - 1, kMagic) != 0)
     throw OutputError(fmt::format("{}: not a dem2d checkpoint", what));
   if (bytes.size() < sizeof kMagic - 1 + 8 + 8) throw OutputError(fmt::format("{}: truncated checkpoint", what));
@@ -305,6 +338,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
     throw OutputError(fmt::format("{}: checkpoint checksum mismatch (the file is damaged)", what));
   r.in = std::string_view(bytes).substr(0, bytes.size() - 8);
   Checkpoint ck;
+  ck.file = what;
   ck.case_hash = r.get_str();
   ck.case_path = r.get_str();
   try {
@@ -317,12 +351,16 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   ck.dt = r.get<double>();
   ck.state = r.get_str();
   r.get_vec(ck.loop);
+  if (r.pos != r.in.size()) throw OutputError(fmt::format("{}: corrupt checkpoint (trailing bytes)", what));
+  check_checkpoint_header(ck);
+  check_finite(what, "run state", std::vector<double>(ck.loop.begin(), ck.loop.begin() + std::min<std::size_t>(ck.loop.size(), 11)));
   return ck;
 }
 
 void restore_simulation(Simulation& sim, const Checkpoint& ck, bool other_case) {
   if (ck.dt != sim.dt())
-    throw CaseError(fmt::format("restart: the checkpoint was written with dt = {:.17g} s, the case has dt = {:.17g} s", ck.dt, sim.dt()));
+    throw CaseError(fmt::format("{}: restart: the checkpoint was written with dt = {:.17g} s, the case has dt = {:.17g} s", ck.file, ck.dt,
+                                sim.dt()));
   SimulationAccess::read(sim, ck, other_case);
 }
 

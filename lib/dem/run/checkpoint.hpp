@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "dem/cases/case_file.hpp"
@@ -26,6 +27,7 @@ inline constexpr std::uint32_t kCheckpointVersion = 4;  // 2: the run loop's dis
                                                           // 4: linear pair slots without ContactForce::opened
 
 struct Checkpoint {
+  std::string file;          // the checkpoint file it was read from (what errors name)
   std::string case_hash, case_path;
   nlohmann::json meta;       // {case, overrides, provenance (code version, date, machine, ...)}
   std::int64_t step = 0;
@@ -42,10 +44,17 @@ std::string case_hash(const Case& c);
 void write_checkpoint(const std::filesystem::path& file, const Simulation& sim, const Case& c,
                       const std::vector<double>& loop);
 
-/// Reads and validates (magic, version, byte order, checksum) a checkpoint. Throws OutputError.
+/// Reads and validates (magic, version, byte order, checksum, the header's numbers) a checkpoint. Throws
+/// OutputError naming the file.
 Checkpoint read_checkpoint(const std::filesystem::path& file);
+/// The same from the file's bytes (`file` only names it in errors).
+Checkpoint parse_checkpoint(std::string_view bytes, const std::string& file);
+/// The FNV-1a 64 checksum a checkpoint ends with, of the bytes before it (tests and fuzz targets craft
+/// checkpoints with it).
+std::uint64_t checkpoint_checksum(std::string_view bytes);
 
-/// Restores the state into `sim`, built from the case to continue. `other_case`: the checkpoint comes
+/// Restores the state into `sim`, built from the case to continue; every field is checked (indices,
+/// flags, finiteness: checkpoint_checks.hpp) before the Simulation uses it, and errors name ck.file. `other_case`: the checkpoint comes
 /// from another case (a checkpoint as the start of a new case): element count, wall count and Δt must
 /// match; each contact slot takes the new case's law for its material pair (the constants fixed when
 /// the contact formed are kept), masses and laws are the new case's. Throws CaseError if they do not

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include <fmt/format.h>
 
 namespace dem {
 
@@ -45,6 +48,14 @@ EnergyScale energy_scale(const Model& m, double e1) {
   // drives: an element thrown by a wall moving at v leaves at most at 2v; and the drive may lift the
   // weight of every element over its travel
   es.drive_work = v_drive > 0.0 ? 0.5 * mass * 4.0 * v_drive * v_drive + mass * g * v_drive * T : 0.0;
+  // and each driven element carries the kinetic energy of its own drive's fastest velocity and may be
+  // lifted by it over the run (the energies count every element, driven ones too)
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    if (!e.active[i] || e.motion[i] != Motion::driven || e.drive[i] < 0) continue;
+    double v_max = 0.0;
+    for (const Vec2& v : m.drives[static_cast<std::size_t>(e.drive[i])].v) v_max = std::max(v_max, norm(v));
+    es.drive_work += 0.5 * e.mass[i] * v_max * v_max + e.mass[i] * g * v_max * T;
+  }
   es.total = e1 + es.gravity_work + es.drive_work;
   return es;
 }
@@ -65,10 +76,25 @@ std::vector<double> loop_state(const LoopState& l, const std::vector<ProbeState>
   for (const LoopState::Keystone& k : l.keystones) v.insert(v.end(), {k.t, k.element, k.x, k.y});
   return v;
 }
-void restore_loop_state(const std::vector<double>& v, LoopState& l, std::vector<ProbeState>& probes) {
-  const std::size_t n_keystones = v.size() >= kLoopNumbers ? static_cast<std::size_t>(v[9]) : 0;
-  if (v.size() != kLoopNumbers + kProbeNumbers * probes.size() + 4 * n_keystones)
-    throw CaseError("restart: the checkpoint's run state does not match the case's probes");
+namespace {
+// A count, step number or flag stored as a double: a whole number in [0, max] (NaN is not).
+bool whole_in(double x, double max) { return x >= 0.0 && x <= max && x == std::floor(x); }
+}  // namespace
+
+void restore_loop_state(const std::vector<double>& v, LoopState& l, std::vector<ProbeState>& probes, const std::string& what) {
+  const std::size_t fixed = kLoopNumbers + kProbeNumbers * probes.size();
+  if (v.size() < fixed || !whole_in(v[9], static_cast<double>(v.size())) ||
+      v.size() != fixed + 4 * static_cast<std::size_t>(v[9]))
+    throw CaseError(fmt::format("{}: restart: the checkpoint's run state does not match the case's probes", what));
+  const std::size_t n_keystones = static_cast<std::size_t>(v[9]);
+  auto whole = [&](std::size_t k, double max, const char* field) {
+    if (!whole_in(v[k], max)) throw CaseError(fmt::format("{}: corrupt checkpoint (run state {}: {})", what, field, v[k]));
+  };
+  whole(6, 9e18, "quiet steps");
+  whole(10, 1.0, "slit opened");
+  for (std::size_t p = 0; p < probes.size(); ++p)
+    for (std::size_t k : {2, 5, 13, 21, 22, 24}) whole(kLoopNumbers + kProbeNumbers * p + k, 1.0, "probe flag");
+  for (std::size_t p = 0; p < probes.size(); ++p) whole(kLoopNumbers + kProbeNumbers * p + 23, 9e18, "probe force steps");
   l.energy_limit = v[0], l.potential0 = v[1];
   l.scale.total = v[2], l.scale.gravity_work = v[3], l.scale.drive_work = v[4], l.scale.drop = v[5];
   l.quiet_steps = static_cast<std::int64_t>(v[6]);

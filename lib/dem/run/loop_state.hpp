@@ -3,6 +3,7 @@
 // window, the peak so far, a silo discharge's clock and keystones; packed into numbers for checkpoints
 // (checkpoint.hpp) together with the probes' accumulators (probe_state.hpp).
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "dem/core/model.hpp"
@@ -37,7 +38,9 @@ struct LoopState {
 
 /// The loop's state and the probes' accumulators as numbers (a checkpoint's `loop`).
 std::vector<double> loop_state(const LoopState& l, const std::vector<ProbeState>& probes);
-/// The inverse of loop_state(); throws CaseError when the numbers do not fit the case's probes.
-void restore_loop_state(const std::vector<double>& v, LoopState& l, std::vector<ProbeState>& probes);
+/// The inverse of loop_state(); throws CaseError, naming `what` (the checkpoint file), when the numbers do
+/// not fit the case's probes or a count or flag is not a whole number in its range.
+void restore_loop_state(const std::vector<double>& v, LoopState& l, std::vector<ProbeState>& probes,
+                        const std::string& what);
 
 }  // namespace dem

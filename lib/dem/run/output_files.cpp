@@ -1,4 +1,5 @@
 #include "dem/run/output_files.hpp"
+#include "dem/run/owned_files.hpp"
 
 #include <atomic>
 #include <cerrno>
@@ -114,6 +115,9 @@ void prepare_run_folder(const fs::path& dir) {
                                       "or new folder (a run folder is cleared before a run, so two runs never mix)",
                                       dir.string(), name));
     }
+    // vtk/ and pictures/: only snapshots and pictures a run wrote (a user's file in them refuses the run)
+    check_owned_folder(dir / "vtk", OwnedFolder::run_vtk, "--out");
+    check_owned_folder(dir / "pictures", OwnedFolder::run_pictures, "--out");
     for (const auto& entry : fs::directory_iterator(dir)) {
       fs::remove_all(entry.path(), ec);
       if (ec) throw OutputError(fmt::format("{}: cannot remove the earlier run's output: {}", entry.path().string(), ec.message()));

@@ -127,7 +127,7 @@ LoopState start_loop(Simulation& sim, const std::optional<Checkpoint>& restart, 
     restore_simulation(sim, *restart, opt.restart_other_case);
     loop.last_release = sim.time();  // a discharge from a saved state: its clock starts at the state's time
     if (opt.restart_other_case) loop.potential0 = sim.energies().potential;
-    else restore_loop_state(restart->loop, loop, probes);
+    else restore_loop_state(restart->loop, loop, probes, restart->file);
     if (loop.slit_opened) sim.open_wall(static_cast<std::uint32_t>(m.discharge.slit));  // opened before the checkpoint
   }
   return loop;
@@ -401,6 +401,42 @@ void check_outputs(const Case& c) {
     compile_located(c.stop.after_peak_quantity, c.path.string(), "stop.after_peak.quantity", c.model);
 }
 
+/// The run once its output folder is open: the loop, the last outputs and the summary.
+static RunResult run_opened(const Case& c, const RunOptions& opt, Simulation& sim, LoopState& loop, std::vector<ProbeState>& probes,
+                     RunOutputs& out, const QuantityFn& peak_quantity, double limit, std::int64_t total_steps,
+                     double energy_factor, const nlohmann::json& resolved_si, const std::optional<Checkpoint>& restart) {
+  const Model& m = std::as_const(sim).model();
+  out.write_row(sim);
+  out.snapshot(sim);
+  out.picture(sim, c.output.pictures);
+
+  RunResult res;
+  res.stability_limit = limit;
+  res.status = "completed";
+  RunLoop run{c,     opt,         sim,           m,    loop, probes, out, peak_quantity, res, limit, total_steps,
+              energy_factor, static_cast<std::uint32_t>(std::max(m.discharge.slit, 0))};
+  run.steps();
+  out.finish(sim, res.status == "interrupted");
+
+  res.steps = sim.steps();
+  res.time = sim.time();
+  std::size_t n_active = 0;
+  for (auto a : m.elements.active) n_active += a;
+  res.element_steps_per_second =
+      res.wall_seconds > 0 ? static_cast<double>(n_active) * static_cast<double>(res.steps) / res.wall_seconds : 0.0;
+  for (const auto& p : probes) res.probes[p.spec->name] = probe_result(p, sim);
+  ratio_results(probes, res.probes);
+
+  res.summary = run_summary(c, sim, res, resolved_si, n_active);
+  if (m.discharge.enabled) res.summary["discharge"] = discharge_summary(sim, loop, n_active);
+  if (restart)
+    res.summary["restart"] = {{"checkpoint", opt.restart.string()}, {"from_case", restart->case_path},
+                              {"step", restart->step}, {"time", restart->time}, {"other_case", opt.restart_other_case},
+                              {"checkpoint_written_by", restart->meta}};
+  out.commit(sim, res.summary, res.status == "interrupted" || opt.checkpoint_at_end, loop_state(loop, probes));
+  return res;
+}
+
 RunResult run_case(Case c, const RunOptions& opt) {
   const double limit = check_case(c);  // throws CaseError before anything runs
   check_outputs(c);
@@ -438,35 +474,13 @@ RunResult run_case(Case c, const RunOptions& opt) {
 
   RunOutputs out(c, opt, std::move(series));
   out.open(sim, total_steps);
-  out.write_row(sim);
-  out.snapshot(sim);
-  out.picture(sim, c.output.pictures);
-
-  RunResult res;
-  res.stability_limit = limit;
-  res.status = "completed";
-  RunLoop run{c,     opt,         sim,           m,    loop, probes, out, peak_quantity, res, limit, total_steps,
-              energy_factor, static_cast<std::uint32_t>(std::max(m.discharge.slit, 0))};
-  run.steps();
-  out.finish(sim, res.status == "interrupted");
-
-  res.steps = sim.steps();
-  res.time = sim.time();
-  std::size_t n_active = 0;
-  for (auto a : m.elements.active) n_active += a;
-  res.element_steps_per_second =
-      res.wall_seconds > 0 ? static_cast<double>(n_active) * static_cast<double>(res.steps) / res.wall_seconds : 0.0;
-  for (const auto& p : probes) res.probes[p.spec->name] = probe_result(p, sim);
-  ratio_results(probes, res.probes);
-
-  res.summary = run_summary(c, sim, res, resolved_si, n_active);
-  if (m.discharge.enabled) res.summary["discharge"] = discharge_summary(sim, loop, n_active);
-  if (restart)
-    res.summary["restart"] = {{"checkpoint", opt.restart.string()}, {"from_case", restart->case_path},
-                              {"step", restart->step}, {"time", restart->time}, {"other_case", opt.restart_other_case},
-                              {"checkpoint_written_by", restart->meta}};
-  out.commit(sim, res.summary, res.status == "interrupted" || opt.checkpoint_at_end, loop_state(loop, probes));
-  return res;
+  try {
+    return run_opened(c, opt, sim, loop, probes, out, peak_quantity, limit, total_steps, energy_factor, resolved_si, restart);
+  } catch (const std::exception& e) {
+    out.record_failure(e.what());  // summary.json says "failed" with the message, not "running" as after SIGKILL
+    throw;
+  }
 }
+
 
 }  // namespace dem

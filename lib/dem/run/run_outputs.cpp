@@ -59,6 +59,17 @@ void RunOutputs::open(const Simulation& sim, std::int64_t total_steps) {
       std::lower_bound(picture_steps_.begin(), picture_steps_.end(), sim.steps()) - picture_steps_.begin());
 }
 
+void RunOutputs::record_failure(const std::string& message) noexcept {
+  if (!write_) return;
+  try {
+    write_file_atomic(opt_.out_dir / "summary.json",
+                      nlohmann::json{{"case", c_.path.string()}, {"overrides", c_.overrides}, {"provenance", provenance()},
+                                     {"status", "failed"}, {"message", message}, {"case_hash", case_hash(c_)}}
+                              .dump(2) + "\n");
+  } catch (...) {
+  }
+}
+
 void RunOutputs::write_row(const Simulation& sim) {
   if (dump_.is_open()) {
     row_step_ = sim.steps();

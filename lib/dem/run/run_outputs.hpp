@@ -47,6 +47,9 @@ class RunOutputs {
   /// The pictures and checkpoint in the summary; then (if writing) the end-of-run checkpoint, the
   /// series made complete, snapshots.pvd and summary.json.
   void commit(const Simulation& sim, nlohmann::json& summary, bool checkpoint_now, const std::vector<double>& loop);
+  /// After an error once the folder is open: summary.json says "failed" with the message (best effort: a
+  /// disk too full for it leaves "running", as a killed run does).
+  void record_failure(const std::string& message) noexcept;
 
  private:
   const Case& c_;

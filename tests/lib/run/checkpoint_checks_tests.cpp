@@ -1,0 +1,207 @@
+// Crafted checkpoints (lib/dem/run/checkpoint_checks.hpp): a file with a valid checksum but an index out of
+// its table, a flag byte of 2, a NaN count, position or clock, a law of the wrong kind, is refused with the
+// checkpoint file and the field named, before the Simulation reads any of it (it crashed, overflowed a heap
+// buffer or ran silently before). A checkpoint of another case whose counts, Δt or laws do not match names
+// the file too.
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "dem/run/checkpoint.hpp"
+#include "dem/run/run.hpp"
+
+#include "../test_support.hpp"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::uint64_t u64_at(const std::string& s, std::size_t at) {
+  std::uint64_t v;
+  std::memcpy(&v, s.data() + at, 8);
+  return v;
+}
+
+/// Where each section of a checkpoint's state starts (checkpoint.cpp, write_state), found by walking it.
+struct StateLayout {
+  std::uint64_t n = 0, walls = 0, candidates = 0, linear_pairs = 0, linear_walls = 0, face_pairs = 0, face_walls = 0;
+  std::size_t x = 0, active = 0, wall0 = 0, candidate0 = 0, linear_pair0 = 0, linear_wall0 = 0, face_pair0 = 0,
+              face_wall0 = 0, x_ref = 0, clock = 0;
+  static constexpr std::size_t kLinearPair = 77, kLinearWall = 78, kFace = 331;
+
+  explicit StateLayout(const std::string& s) {
+    std::size_t at = 0;
+    n = u64_at(s, at), at += 8;
+    at += 8 + 4 * n;  // ids
+    x = at + 8;
+    at += 12 * (8 + 8 * n);
+    active = at + 8, at += 8 + n;
+    walls = u64_at(s, at), at += 8, wall0 = at, at += 64 * walls;
+    candidates = u64_at(s, at), at += 8, candidate0 = at, at += 8 * candidates;
+    linear_pairs = u64_at(s, at), at += 8, linear_pair0 = at, at += kLinearPair * linear_pairs;
+    linear_walls = u64_at(s, at), at += 8, linear_wall0 = at, at += kLinearWall * linear_walls;
+    face_pairs = u64_at(s, at), at += 8, face_pair0 = at, at += kFace * face_pairs;
+    face_walls = u64_at(s, at), at += 8, face_wall0 = at, at += kFace * face_walls;
+    x_ref = at + 8;
+    at += 2 * (8 + 8 * n) + 8 + 16 * walls;
+    clock = at;  // skin, time, step, rebuilds, preloading
+    REQUIRE(at + 8 * 4 + 1 == s.size());
+  }
+};
+
+/// A checkpoint file and its bytes, with the places of the header's numbers, the state and the run loop.
+struct CheckpointBytes {
+  std::string bytes;
+  std::size_t state = 0, loop = 0;  // offsets of the state's first byte and of the loop's first number
+  explicit CheckpointBytes(const fs::path& file) : bytes(test::slurp(file)) {
+    const dem::Checkpoint ck = dem::read_checkpoint(file);
+    state = bytes.find(ck.state);
+    REQUIRE(state != std::string::npos);
+    loop = state + ck.state.size() + 8;
+  }
+  std::size_t step() const { return state - 8 - 3 * 8; }
+  std::size_t time() const { return state - 8 - 2 * 8; }
+  /// A copy with `value` written at `at` and the checksum made valid again.
+  template <class T>
+  std::string with(std::size_t at, T value) const {
+    std::string b = bytes;
+    std::memcpy(b.data() + at, &value, sizeof value);
+    const std::uint64_t sum = dem::checkpoint_checksum(std::string_view(b).substr(0, b.size() - 8));
+    std::memcpy(b.data() + b.size() - 8, &sum, 8);
+    return b;
+  }
+};
+
+fs::path write(const fs::path& dir, const std::string& name, const std::string& bytes) {
+  const fs::path f = dir / name;
+  std::ofstream(f, std::ios::binary) << bytes;
+  return f;
+}
+
+/// The case restarted from `file`: the message of what it throws ("" if it runs).
+std::string restart_error(const dem::Case& c, const fs::path& file, const fs::path& out, bool other_case = false) {
+  dem::RunOptions o;
+  o.out_dir = out;
+  o.restart = file;
+  o.restart_other_case = other_case;
+  try {
+    dem::run_case(c, o);
+  } catch (const std::exception& x) {
+    return x.what();
+  }
+  return "";
+}
+
+/// A checkpoint of the disks case at the first of some steps where two disks are candidates (the disks
+/// bounce: at a given step they may all be apart).
+fs::path disks_checkpoint(const dem::Case& disks, const fs::path& dir) {
+  for (const std::int64_t step : {2000, 4000, 6000, 7000, 9000, 10000, 11000}) {
+    dem::RunOptions o;
+    o.out_dir = dir / "a";
+    o.interrupt_at_step = step;
+    REQUIRE(dem::run_case(disks, o).status == "interrupted");
+    if (StateLayout(dem::read_checkpoint(dir / "a" / "checkpoint.bin").state).linear_pairs > 0) return dir / "a" / "checkpoint.bin";
+    fs::remove_all(dir / "a");
+  }
+  FAIL("no checkpoint with a linear pair slot");
+  return {};
+}
+
+}  // namespace
+
+TEST_CASE("A crafted checkpoint of disks is refused with the file and the field named", "[outputs][restart][checkpoint]") {
+  const dem::Case disks = dem::read_case(test::source("tests/lib/fixtures/restart_disks.toml"));
+  const fs::path dir = test::fresh_dir("dem2d_unit_checkpoint_checks", "disks");
+  const fs::path file = disks_checkpoint(disks, dir);
+  const CheckpointBytes ck(file);
+  const StateLayout s(dem::read_checkpoint(file).state);
+  REQUIRE(s.n == 6);
+  REQUIRE(s.walls == 2);
+  REQUIRE(s.linear_pairs > 0);
+  REQUIRE(s.linear_walls > 0);
+  const std::size_t at = ck.state;
+  struct Crafted {
+    const char* name;
+    std::string bytes;
+    const char* field;
+  };
+  const Crafted crafted[] = {
+      {"pair_i", ck.with<std::uint32_t>(at + s.linear_pair0, 99), "linear pair slot 0"},
+      {"pair_j", ck.with<std::uint32_t>(at + s.linear_pair0 + 4, 0), "linear pair slot 0"},
+      {"pair_law", ck.with<std::int32_t>(at + s.linear_pair0 + 8, 7), "law index 7"},
+      {"pair_touching", ck.with<std::uint8_t>(at + s.linear_pair0 + 12, 2), "linear pair slot 0 touching"},
+      {"pair_force", ck.with<double>(at + s.linear_pair0 + 13 + 4 * 8, kNaN), "linear pair slot 0"},
+      {"wall_slot_j", ck.with<std::uint32_t>(at + s.linear_wall0 + 4, 9), "wall index 9"},
+      {"wall_slot_opened", ck.with<std::uint8_t>(at + s.linear_wall0 + 13 + 6 * 8, 2), "linear wall slot opened"},
+      {"x_nan", ck.with<double>(at + s.x + 8, kNaN), "element x[1]"},
+      {"active_7", ck.with<std::uint8_t>(at + s.active + 2, 7), "element active[2]"},
+      {"wall_nan", ck.with<double>(at + s.wall0 + 16, kNaN), "wall 0 (floor)"},
+      {"x_ref_nan", ck.with<double>(at + s.x_ref, kNaN), "reference x[0]"},
+      {"preloading_2", ck.with<std::uint8_t>(ck.loop - 8 - 1, 2), "preloading"},  // the state's last byte
+      {"state_clock", ck.with<double>(at + s.clock + 8, kNaN), "clock"},
+      {"header_time", ck.with<double>(ck.time(), kNaN), "time"},
+      {"header_step", ck.with<std::int64_t>(ck.step(), -5), "step"},
+      {"keystone_count", ck.with<double>(ck.loop + 9 * 8, kNaN), "run state"},
+      {"quiet_steps", ck.with<double>(ck.loop + 6 * 8, -1.5), "run state quiet steps"},
+  };
+  int k = 0;
+  for (const Crafted& c : crafted) {
+    INFO(c.name);
+    // a file name that holds no field name (the message must name the field itself)
+    const fs::path f = write(dir, "crafted" + std::to_string(k++) + ".bin", c.bytes);
+    const std::string error = restart_error(disks, f, dir / c.name);
+    CHECK_THAT(error, Contains(f.string()) && Contains(c.field));
+  }
+  // The untouched file restarts (the crafting itself breaks nothing).
+  CHECK(restart_error(disks, write(dir, "same.bin", ck.with<std::uint8_t>(ck.state + s.active, 1)), dir / "same") == "");
+}
+
+TEST_CASE("A crafted checkpoint of bonded PREs is refused with the file and the field named", "[outputs][restart][checkpoint]") {
+  const dem::Case pre = dem::read_case(test::source("tests/lib/fixtures/restart_pre_break.toml"));
+  const fs::path dir = test::fresh_dir("dem2d_unit_checkpoint_checks", "pre");
+  dem::RunOptions o;
+  o.out_dir = dir / "a";
+  o.interrupt_at_step = 200;
+  REQUIRE(dem::run_case(pre, o).status == "interrupted");
+  const CheckpointBytes ck(dir / "a" / "checkpoint.bin");
+  const StateLayout s(dem::read_checkpoint(dir / "a" / "checkpoint.bin").state);
+  REQUIRE(s.face_pairs == 1);
+  const std::size_t slot = ck.state + s.face_pair0;
+  const std::size_t seg0 = 12 + 1 + 48 + 16 + 1;  // i, j, law, touching; constants; θ1, θ2; geometric_start
+  const std::size_t links = seg0 + 8 * 26 + 24;
+  const std::pair<std::string, const char*> crafted[] = {
+      {ck.with<std::uint32_t>(slot + 4, 5), "face pair slot 0"},
+      {ck.with<std::int32_t>(slot + 8, -3), "law index -3"},
+      {ck.with<std::uint8_t>(slot + seg0 + 24, 2), "segment linked"},
+      {ck.with<std::int32_t>(slot + links, 99), "99 links"},
+      {ck.with<std::uint8_t>(slot + links + 4, 2), "face slot any_tensile"},
+      {ck.with<double>(slot + 13, kNaN), "face pair slot 0"},
+  };
+  int k = 0;
+  for (const auto& [bytes, field] : crafted) {
+    INFO(field);
+    const fs::path f = write(dir, "crafted" + std::to_string(k) + ".bin", bytes);
+    CHECK_THAT(restart_error(pre, f, dir / ("c" + std::to_string(k))), Contains(f.string()) && Contains(field));
+    ++k;
+  }
+}
+
+TEST_CASE("A checkpoint that does not fit another case names the checkpoint file", "[outputs][restart][checkpoint]") {
+  const dem::Case disks = dem::read_case(test::source("tests/lib/fixtures/restart_disks.toml"));
+  const fs::path dir = test::fresh_dir("dem2d_unit_checkpoint_checks", "other");
+  const fs::path ck = disks_checkpoint(disks, dir);
+  const dem::Case belt = dem::read_case(test::source("tests/lib/fixtures/restart_belt.toml"));
+  CHECK_THAT(restart_error(belt, ck, dir / "b", true), Contains(ck.string()) && Contains("elements"));
+  const dem::Case finer = dem::read_case(test::source("tests/lib/fixtures/restart_disks.toml"), {"numerics.dt=5e-6"});
+  CHECK_THAT(restart_error(finer, ck, dir / "c", true), Contains(ck.string()) && Contains("dt ="));
+  const dem::Case faces = dem::read_case(test::source("tests/lib/fixtures/restart_disks.toml"), {"contact.0.law=\"face\""});
+  CHECK_THAT(restart_error(faces, ck, dir / "d", true), Contains(ck.string()) && Contains("no linear contact law"));
+}
