@@ -69,6 +69,14 @@ std::string gnuplot_path(const std::filesystem::path& path) {
   return "'" + out + "'";
 }
 
+// An explicit tic label: gnuplot reads it as a format for the tic's value, so a literal % is written %%
+// ("fill gap (dummy: ±3 %)" is otherwise "Bad format character").
+std::string tic_label(const std::string& label) {
+  std::string out;
+  for (const char c : gnuplot_label(label)) out += c == '%' ? std::string("%%") : std::string(1, c);
+  return out;
+}
+
 // A word for /bin/sh: single-quoted, embedded ' as '\''.
 std::string shell_quote(const std::string& word) {
   std::string out = "'";
@@ -188,13 +196,13 @@ std::string gnuplot_script(const Plot& plot, const std::filesystem::path& svg_fi
   if (!plot.yticks.empty()) {
     std::string list;
     for (const auto& [v, label] : plot.yticks)
-      list += fmt::format("{}'{}' {:.17g}", list.empty() ? "" : ", ", gnuplot_label(label), v);
+      list += fmt::format("{}'{}' {:.17g}", list.empty() ? "" : ", ", tic_label(label), v);
     s += "set ytics (" + list + ")\nset grid noytics\n";
   }
   if (!plot.xticks.empty()) {
     std::string list;
     for (const auto& [v, label] : plot.xticks)
-      list += fmt::format("{}'{}' {:.17g}", list.empty() ? "" : ", ", gnuplot_label(label), v);
+      list += fmt::format("{}'{}' {:.17g}", list.empty() ? "" : ", ", tic_label(label), v);
     s += "set xtics (" + list + ")\nset grid noxtics\n";
   }
   for (const auto& label : plot.labels)

@@ -408,3 +408,18 @@ TEST_CASE("the speed benchmark's newest table and its plot are shown, an older o
   report::write_report(options);
   CHECK(read(tmp.path / "out3/index.html").find("id=\"speed\"") == std::string::npos);
 }
+
+TEST_CASE("a tic label with a percent sign is drawn as written - gnuplot reads tic labels as formats", "[report]") {
+  report::Plot plot;
+  report::Curve c;
+  c.x = {1, 2};
+  c.y = {1.0, 2.0};
+  plot.curves.push_back(c);
+  plot.xticks = {{1.0, "fill gap (dummy: ±3 %)"}, {2.0, "φ"}};
+  const auto script = report::gnuplot_script(plot, "x.svg");
+  CHECK(script.find("'fill gap (dummy: ±3 %%)' 1") != std::string::npos);
+  TempDir tmp;
+  const auto outcome = report::render_svg(plot, tmp.path / "ticks.svg", GNUPLOT_EXECUTABLE);
+  CHECK(outcome.error == "");
+  CHECK(outcome.ok);
+}
