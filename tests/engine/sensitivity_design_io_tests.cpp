@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "quiet_options.hpp"
 #include "dem/cases/case_file.hpp"
 #include "engine/sensitivity.hpp"
 #include "engine/sensitivity_functions.hpp"
@@ -37,13 +38,7 @@ std::vector<std::string> split(const std::string& line) {
   return out;
 }
 
-ver::StudyOptions options(const fs::path& out) {
-  ver::StudyOptions o;
-  o.out_dir = out;
-  o.jobs = 1;
-  o.print = false;
-  return o;
-}
+ver::StudyOptions options(const fs::path& out) { return test::quiet_options(out); }
 
 }  // namespace
 

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quiet_options.hpp"
 #include "dem/run/interrupt.hpp"
 #include "engine/sensitivity.hpp"
 
@@ -38,13 +39,7 @@ fs::path sweep_file(const std::string& folder, const std::string& extra = {}, co
   return f;
 }
 
-ver::StudyOptions quiet(const fs::path& out) {
-  ver::StudyOptions o;
-  o.out_dir = out;
-  o.jobs = 1;
-  o.print = false;
-  return o;
-}
+ver::StudyOptions quiet(const fs::path& out) { return test::quiet_options(out); }
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "quiet_options.hpp"
 #include "dem/run/interrupt.hpp"
 #include "engine/study.hpp"
 #include "study_result.hpp"
@@ -59,13 +60,7 @@ fs::path study_copy(const std::string& folder, const std::string& replace = {}, 
 /// The [study] header followed by a name line.
 std::string fmt_name(const std::string& name) { return "[study]\nname = \"" + name + "\"\n"; }
 
-ver::StudyOptions quiet(const fs::path& out) {
-  ver::StudyOptions o;
-  o.out_dir = out;
-  o.jobs = 1;
-  o.print = false;
-  return o;
-}
+ver::StudyOptions quiet(const fs::path& out) { return test::quiet_options(out); }
 
 }  // namespace
 
