@@ -13,6 +13,10 @@
 #include <sstream>
 #include <zlib.h>
 
+#include <optional>
+
+#include <fmt/format.h>
+
 #include "dem/cases/case_file.hpp"
 #include "dem/core/simulation.hpp"
 #include "dem/run/picture/force_network.hpp"
@@ -274,4 +278,47 @@ TEST_CASE("picture: a broken bond is marked with an orange cross where it broke 
   auto orange = [](dem::Rgb c) { return c.r > 200 && c.g > 80 && c.g < 160 && c.b < 60; };
   CHECK(orange(marked.canvas.at(static_cast<int>(p.x), static_cast<int>(p.y))));
   CHECK_FALSE(orange(none.canvas.at(static_cast<int>(p.x), static_cast<int>(p.y))));
+}
+
+namespace {
+/// `pairs` disk pairs far apart, each overlapping by 0.02 mm (|f_n| = K δ = 2 N after the first step), the
+/// first one by 2 mm (200 N): one impact far above the rest.
+std::string pairs_case(int pairs) {
+  std::string s = R"([case]
+title = "disk pairs"
+[physics]
+gravity = [0.0, 0.0]
+[[material]]
+name = "sand"
+density = 2650.0
+[[contact]]
+between = ["sand", "sand"]
+kn = 1e5
+damping_ratio = 0.0
+[numerics]
+dt = 1e-7
+duration = 1e-7
+allow_unstable = true
+)";
+  for (int k = 0; k < pairs; ++k) {
+    const double x = 0.1 * k, gap = k == 0 ? 0.018 : 0.01998;
+    s += fmt::format("[[element]]\nmaterial = \"sand\"\nradius = 0.01\nposition = [{}, 0.0]\n", x);
+    s += fmt::format("[[element]]\nmaterial = \"sand\"\nradius = 0.01\nposition = [{}, 0.0]\n", x + gap);
+  }
+  return s;
+}
+}  // namespace
+
+TEST_CASE("picture: without a fixed scale the widest line is the 99th percentile of |f_n| - one impact does not hide the rest", "[picture]") {
+  auto scale_of = [](int pairs, std::optional<double> fixed) {
+    const auto path = test::write_temp(fmt::format("picture_pairs_{}.toml", pairs), pairs_case(pairs));
+    dem::Simulation sim(dem::read_case(path).model);
+    sim.step();
+    dem::PictureOptions o;
+    o.max_force = fixed;
+    return dem::draw_force_network(sim, o).max_force;
+  };
+  CHECK(scale_of(150, std::nullopt) == Approx(2.0).epsilon(1e-3));   // 150 contacts: the 99th percentile
+  CHECK(scale_of(10, std::nullopt) == Approx(200.0).epsilon(1e-3));  // too few for a percentile: the largest
+  CHECK(scale_of(150, 50.0) == 50.0);                                // a fixed scale is kept
 }

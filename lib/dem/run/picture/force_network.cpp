@@ -18,6 +18,8 @@ constexpr Rgb kBackground{255, 255, 255}, kElementFill{226, 226, 226}, kElementE
     kWall{30, 60, 150}, kCompression{0, 0, 0}, kTension{210, 30, 30}, kText{0, 0, 0}, kLegendBack{245, 245, 245},
     kBroken{230, 120, 0};
 
+constexpr std::size_t kRobustFrom = 20;  // contacts needed for a percentile scale
+
 struct Box {
   double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
   void add(double x, double y, double r = 0.0) {
@@ -71,10 +73,22 @@ ForcePicture draw_force_network(const Simulation& sim, const PictureOptions& o) 
   for (std::size_t i = 0; i < e.size(); ++i)
     if (e.active[i]) r_min = std::min(r_min, e.radius[i]);
   const auto contacts = contacts_in_id_order(sim);  // drawn in the same order with spatial reordering
-  double fmax = 0.0;
+  // The scale: a fixed max_force, else the 99th percentile of |f_n| over the drawn contacts (with fewer than
+  // kRobustFrom of them, the largest): a single impact far above the rest must not make the network
+  // invisible; lines above the scale are drawn at most 1.5 × max_line, and the legend says which.
+  std::vector<double> drawn;
   for (const auto& c : contacts)
-    if (e.active[c.i] && (c.wall || e.active[c.j])) fmax = std::max(fmax, std::abs(c.fn));
-  const double max_force = o.max_force ? *o.max_force : fmax;
+    if (e.active[c.i] && (c.wall || e.active[c.j]) && c.fn != 0.0) drawn.push_back(std::abs(c.fn));
+  const bool robust = !o.max_force && drawn.size() >= kRobustFrom;
+  double fscale = 0.0;
+  if (robust) {
+    const auto k = static_cast<std::ptrdiff_t>(std::ceil(0.99 * static_cast<double>(drawn.size()))) - 1;
+    std::nth_element(drawn.begin(), drawn.begin() + k, drawn.end());
+    fscale = drawn[static_cast<std::size_t>(k)];
+  } else {
+    for (const double f : drawn) fscale = std::max(fscale, f);
+  }
+  const double max_force = o.max_force ? *o.max_force : fscale;
   const double max_line =
       o.max_line > 0.0 ? o.max_line : std::clamp(0.6 * (std::isfinite(r_min) ? r_min * f.scale : 10.0), 1.0, 30.0);
   // Legend: three rows, the middle one tall enough for the sample line.
@@ -146,7 +160,7 @@ ForcePicture draw_force_network(const Simulation& sim, const PictureOptions& o) 
   cv.line(x + cap, mid, x + cap + 24 * s, mid, max_line, kCompression);
   cv.text(static_cast<int>(x + 2 * cap + 24 * s + 6 * s), static_cast<int>(mid) - 4 * s,
           fmt::format("|fn| = {:.4g} N ({}) is {:.3g} px wide, width prop. to |fn|", max_force,
-                      o.max_force ? "fixed" : "max", max_line),
+                      o.max_force ? "fixed" : robust ? "99th percentile" : "max", max_line),
           s, kText);
   const int yb = y0 + 2 * s + line_h + sample_h;
   const int after = cv.text(x, yb, "compression", s, kCompression);
