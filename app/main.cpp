@@ -30,7 +30,11 @@
 #include "dem/run/output_files.hpp"
 #include "dem/run/resolved_case.hpp"
 #include "dem/run/case_in_words.hpp"
+#include "dem/run/run_threads.hpp"
+#include "dem/core/usable_cores.hpp"
 #include "dem/run/run.hpp"
+#include "dem/run/run_threads.hpp"
+#include "dem/core/usable_cores.hpp"
 #include "dem/core/simulation.hpp"
 #include "engine/sensitivity.hpp"
 #include "engine/study.hpp"
@@ -159,13 +163,18 @@ void add_run(CLI::App& app, Cli& o) {
   // Default 1: every study already runs its runs side by side on one thread each, and on a machine shared
   // with other work a second thread mostly waits for its partner (bench/journal.md, "Threads inside a run").
   o.run_opt.threads = 1;
-  const std::string cores = std::to_string(std::max(1u, std::thread::hardware_concurrency()));
+  const std::string cores = std::to_string(dem::usable_cores());
   run->add_option("--threads", o.run_opt.threads,
-                  "Threads inside the run: a number, or auto (this machine's cores, " + cores +
-                      ") (default 1; runs of at least 8192 elements can use 2 or more); the results are the same "
-                      "bit for bit for any number")
+                  "Threads inside the run: a number, or auto (the cores this process may use, " + cores +
+                      ") (default 1; runs of at least 2048 elements can use 2 or more; never more than the usable "
+                      "cores; fewer while the machine is busy with other work); the results are the same bit for "
+                      "bit for any number")
       ->transform(CLI::Transformer({{"auto", cores}}))
       ->check(CLI::Range(1, 1024));
+  run->add_flag("--fixed-threads", [&o](std::int64_t) { o.run_opt.governed = false; },
+                "Exactly --threads threads at every step, also on a busy machine (benchmarks)");
+  run->add_flag("--timings", o.run_opt.timings,
+                "summary.json gets \"timings\": where the steps' time went, per thread and phase");
   run->add_option("--checkpoint-every", o.run_opt.checkpoint_every,
                   "Write <out>/checkpoint.bin every N steps (replaced each time; SIGINT/SIGTERM always write one)")
       ->check(CLI::NonNegativeNumber);
@@ -293,6 +302,13 @@ int dispatch(Cli& o, int argc, char** argv) {
     if (*o.run) {
       o.run_opt.restart = !o.restart.empty() ? o.restart : o.start_from;
       o.run_opt.restart_other_case = !o.start_from.empty();
+      if (const int usable = dem::threads_for_run(o.run_opt.threads); usable < o.run_opt.threads) {
+        if (!o.quiet)
+          fmt::print(stderr, "dem2d: --threads {}: this process may use {} cores (affinity, cgroup quota); running on {}\n",
+                     o.run_opt.threads, usable, usable);
+        o.run_opt.threads_asked = o.run_opt.threads;
+        o.run_opt.threads = usable;
+      }
       return cmd_run(o.case_file, o.sets, o.out_dir, o.quiet, o.run_opt);
     }
     if (*o.check) return cmd_check(o.case_file, o.sets);

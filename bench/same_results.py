@@ -20,7 +20,8 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-VOLATILE = {"provenance", "wall_seconds", "cpu_seconds", "element_steps_per_second", "wall_time", "started", "finished"}
+VOLATILE = {"provenance", "wall_seconds", "cpu_seconds", "element_steps_per_second", "wall_time", "started", "finished",
+            "threads", "timings"}
 
 
 def strip(j):

@@ -26,10 +26,37 @@ double thread_seconds() {
 
 }  // namespace
 
+// The pool has the threads asked for; a job runs on `threads` of them (fewer while the governor says so).
 WorkerThreads& Simulation::workers(int threads) const {
-  if (!workers_.pool || workers_.pool->size() != threads) workers_.pool = std::make_unique<WorkerThreads>(threads);
+  const int size = std::max(threads, threads_asked());
+  if (!workers_.pool || workers_.pool->size() != size) {
+    workers_.pool = std::make_unique<WorkerThreads>(size);
+    workers_.pool->set_timing(true);  // the waits, for the governor and the timings (a clock read per wait)
+  }
+  if (timings_.on && timings_.threads.size() < static_cast<std::size_t>(size))
+    timings_.threads.resize(static_cast<std::size_t>(size));
+  workers_.pool->set_active(threads);
   return *workers_.pool;
 }
+
+// After a step on several threads: the step's wall time to the governor; at a window's end, the share of
+// the threads' time in the window's jobs that they waited (the pool's waits and wake-ups).
+void Simulation::govern(double step_wall) {
+  if (!governor_.add_step(step_wall)) return;
+  double share = -1.0;
+  if (workers_.pool) {
+    double waits = 0.0;
+    for (const PoolThreadTimes& p : workers_.pool->times()) waits += p.wait + p.wake;
+    const double jobs = workers_.pool->job_seconds();
+    const double threads = static_cast<double>(workers_.pool->active());
+    if (jobs > governor_job0_) share = (waits - governor_wait0_) / (threads * (jobs - governor_job0_));
+    governor_wait0_ = waits;
+    governor_job0_ = jobs;
+  }
+  governor_.window_done(share);
+}
+
+StepTimings Simulation::step_timings() const { return timings_; }
 
 void Simulation::share_work(int threads) {
   shares_.build(threads, m_.elements.size(), linear_pairs_.pair, face_pairs_, linear_walls_, face_walls_);
@@ -57,8 +84,14 @@ void Simulation::balance_if_uneven() {
     sum += busy_[t].seconds;
   }
   const double mean = sum / static_cast<double>(busy_.size());
-  if (most > (1.0 + kBalanceTolerance) * mean) {
+  // A balance runs between two steps on one thread (a pass over the elements): it is made when it pays. The
+  // busiest thread held the others up by about (most − mean) over the kBalanceSteps / kClockEvery measured
+  // steps, i.e. by kClockEvery (most − mean) over the next kBalanceSteps; a damped balance wins back half.
+  const double gain = 0.5 * kClockEvery * (most - mean);
+  if (most > (1.0 + kBalanceTolerance) * mean && gain > balance_seconds_) {
+    const double start = phase_clock();
     balance_threads(busy_seconds_);
+    balance_seconds_ = phase_clock() - start;
   } else {
     busy_.assign(busy_.size(), ThreadClock{});
     balance_steps_ = 0;
@@ -172,6 +205,7 @@ void Simulation::step_on_threads(int nt, bool tested, double inv_dt, double dt_v
   const bool timed = balance_steps_ % kClockEvery == 0;  // this step's work measured (balance_if_uneven)
   auto body = [&](int t) {  // thread t takes share t
     const std::size_t k = static_cast<std::size_t>(t);
+    PhaseTimes* const phase = phases(t);
     if (test) {  // needs_rebuild() split over the threads (an OR of the same per-element tests)
       const Elements& e = m_.elements;
       const std::size_t b = shares_.first[k], end = shares_.first[k + 1];
@@ -186,8 +220,10 @@ void Simulation::step_on_threads(int nt, bool tested, double inv_dt, double dt_v
       }
     }
     const double c0 = timed ? thread_seconds() : 0.0;  // the thread's work on its share, without the waits
+    const double w0 = phase ? phase_clock() : 0.0;
     sweep_share(inv_dt, k, true);  // every contact law (K5–K14, M3–M12); (K15) on private elements
     pool.signal_done(t);
+    const double w1 = phase ? phase_clock() : 0.0;
     // (K17–K19) and the next step's rebuild test: the elements [mid, end) at once (private: their forces
     // are complete, and no other thread reads them), the rest after the shared ones are summed. The shared
     // elements of thread t are touched only by slots of the threads before it (slots are computed by
@@ -199,9 +235,12 @@ void Simulation::step_on_threads(int nt, bool tested, double inv_dt, double dt_v
     RangeTests tests_late;
     if (mid < end) late = integrate_range(mid, end, dt_v, freedom(mid, end), limit2_step, limit2_next, tests_late);
     const double c1 = timed ? thread_seconds() : 0.0;
+    const double w2 = phase ? phase_clock() : 0.0;
     pool.wait_earlier(t);  // their sweeps no longer read the shared elements, and their slots are complete
     const double c2 = timed ? thread_seconds() : 0.0;
+    const double w3 = phase ? phase_clock() : 0.0;
     gather_shared(k, true);  // (K15): m g plus the contacts of the shared elements, in the fixed order
+    const double w4 = phase ? phase_clock() : 0.0;
     if (!plate) {
       Overstep first;  // over the shares in element order (overstep())
       RangeTests tests_first;
@@ -216,6 +255,11 @@ void Simulation::step_on_threads(int nt, bool tested, double inv_dt, double dt_v
     // waited for every other thread's sweep, and it usually finishes before thread 0
     if (t == nt - 1) sum_wall_forces();
     if (timed) busy_[k].seconds += (c1 - c0) + (thread_seconds() - c2);
+    if (phase) {
+      phase->sweep += w1 - w0;
+      phase->gather += w4 - w3;
+      phase->integrate += (w2 - w1) + (phase_clock() - w4);
+    }
   };
   pool.run(body);
   if (index_failed)

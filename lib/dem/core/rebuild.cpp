@@ -251,7 +251,10 @@ bool Simulation::rebuild_on(const Team& team) {
   const int t = team.t, nt = team.nt;
   const auto k = static_cast<std::size_t>(t);
   const Elements& e = m_.elements;
+  PhaseTimes* const phase = phases(t);
+  const PhaseTimer whole(phase ? &phase->rebuild : nullptr);  // (step_timings.hpp)
   if (t == 0) {
+    const PhaseTimer serial(phase ? &timings_.rebuild_serial : nullptr);
     if (m_.numerics.reorder_every > 0 && rebuilds_ % m_.numerics.reorder_every == 0) reorder_elements();
     ++rebuilds_;
     rebuild_cells_ = search_.sort_into_cells(e, skin_);

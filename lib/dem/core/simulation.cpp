@@ -100,9 +100,14 @@ void Simulation::open_wall(std::uint32_t w) {
   index_contacts();  // the slot lists changed
 }
 
-int Simulation::threads_used() const {
+int Simulation::threads_asked() const {
   const std::size_t most = std::max<std::size_t>(1, m_.elements.size() / min_per_thread_);
   return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads_), most));
+}
+
+int Simulation::threads_used() const {
+  const int asked = threads_asked();
+  return governed_ && governor_.most() == asked ? std::min(asked, governor_.threads()) : asked;
 }
 
 double Simulation::velocity_dt() const {
@@ -128,7 +133,13 @@ double Simulation::next_rebuild_limit2() const {
 }
 
 void Simulation::step() {
+  const bool clocked = timings_.on || (governed_ && threads_asked() > 1);
+  const double wall0 = clocked ? phase_clock() : 0.0;
+  const double jobs0 = timings_.on && workers_.pool ? workers_.pool->job_seconds() : 0.0;
+  const std::int64_t rebuilds0 = rebuilds_;
+  if (governed_ && governor_.most() != threads_asked()) governor_.start(threads_asked());
   const int nt = threads_used();
+  if (timings_.on && timings_.threads.empty()) timings_.threads.resize(1);
   // The rebuild test of this step (needs_rebuild) was made by the last step's integration, element by
   // element in the same pass, if nothing changed the state since (tested_step_ == step_).
   const bool tested = step_ > 0 && tested_step_ == step_;
@@ -150,14 +161,20 @@ void Simulation::step() {
   const double limit2_next = plate ? -1.0 : next_rebuild_limit2();  // < 0: the next step tests by itself
   if (nt == 1) {  // each slot adds its forces at once, in slot order
     Elements& e = m_.elements;
+    const double t0 = timings_.on ? phase_clock() : 0.0;
     weight(e.fx.data(), e.fy.data(), e.mass.data(), m_.gravity, n);  // (K15): gravity
     std::fill(e.moment.begin(), e.moment.end(), 0.0);
     sweep_scatter(inv_dt);
     sum_wall_forces();
+    const double t1 = timings_.on ? phase_clock() : 0.0;
     if (!plate) {
       range_tests_.assign(1, RangeTests{});
       oversteps_.assign(1, integrate_range(0, n, dt_v, freedom(0, n), limit2_step, limit2_next, range_tests_[0]));
       displaced_.assign(1, range_tests_[0].displaced);
+    }
+    if (timings_.on) {
+      timings_.threads[0].sweep += t1 - t0;
+      timings_.threads[0].integrate += phase_clock() - t1;
     }
   } else {  // the same sums, shared as thread_shares.hpp says (parallel_step.cpp)
     step_on_threads(nt, tested, inv_dt, dt_v, limit2_step, limit2_next, plate);
@@ -192,6 +209,16 @@ void Simulation::step() {
   move_walls();
   if (limit2_next >= 0.0) tested_step_ = step_ + 1;
   ++step_;
+  if (clocked) {
+    const double wall = phase_clock() - wall0;
+    if (timings_.on) {
+      timings_.step_wall += wall;
+      if (workers_.pool) timings_.step_jobs += workers_.pool->job_seconds() - jobs0;
+      ++timings_.steps;
+      timings_.rebuilds += rebuilds_ - rebuilds0;
+    }
+    if (governed_ && threads_asked() > 1) govern(wall);
+  }
   forces_step_ = keep_forces_ ? step_ : -1;
   time_ = static_cast<double>(step_) * m_.numerics.dt;
 }

@@ -14,7 +14,9 @@
 #include "dem/core/neighbour_search.hpp"
 #include "dem/core/spatial_order.hpp"
 #include "dem/core/stability.hpp"
+#include "dem/core/thread_governor.hpp"
 #include "dem/core/thread_shares.hpp"
+#include "dem/core/step_timings.hpp"
 #include "dem/core/worker_threads.hpp"
 
 // (not under ThreadSanitizer: the clones' resolvers run while the program is loaded, before TSan starts)
@@ -164,16 +166,33 @@ class Simulation {
   /// its contacts in the one-thread order, whatever thread computes what (thread_shares.hpp).
   /// A thread takes at least `min_per_thread` elements (a step of fewer elements is faster on one
   /// thread: the threads' start and barrier cost more than they save); tests lower it to 1.
-  void set_threads(int threads, std::size_t min_per_thread = 4096) {
+  /// With `governed`, a step may use fewer of them while the machine is busy with other work
+  /// (thread_governor.hpp; `dem2d run` turns it on unless --fixed-threads); without, exactly `threads`.
+  void set_threads(int threads, std::size_t min_per_thread = 1024, bool governed = false) {
     tested_step_ = -1;
     threads_ = threads < 1 ? 1 : threads;
     min_per_thread_ = min_per_thread < 1 ? 1 : min_per_thread;
+    governed_ = governed;
+    governor_.start(1);  // restarted at the next step
   }
   int threads() const { return threads_; }
+  /// The thread governor's statistics (probes, steps on fewer threads than asked for).
+  const ThreadGovernor& governor() const { return governor_; }
+  /// From the next step on, `threads` of the threads asked for, as the governor decides it (tests).
+  void hold_threads(int threads) {
+    governed_ = true;
+    governor_.start(threads_asked());
+    governor_.hold_at(threads);
+  }
+  /// Where a step's time goes, per thread and phase (step_timings.hpp); off by default (`run --timings`).
+  void set_timings(bool on) { timings_.on = on; }
+  StepTimings step_timings() const;
+  /// The pool's waits, wake-ups and sleeps per thread (empty before a step on several threads).
+  std::vector<PoolThreadTimes> pool_times() const { return workers_.pool ? workers_.pool->times() : std::vector<PoolThreadTimes>{}; }
   /// CPU time used so far by this simulation's worker threads (0 before a step on several threads) [s]; with
   /// the stepping thread's own clock, a run's CPU time even when other runs share the process (studies).
   double worker_cpu_seconds() const { return workers_.pool ? workers_.pool->cpu_seconds() : 0.0; }
-  int threads_used() const;  // what a step uses: threads() limited by min_per_thread
+  int threads_used() const;  // what a step uses: threads() limited by min_per_thread and the governor
   /// On several threads, a step measures each thread's CPU time on its share; every kBalanceSteps steps,
   /// if the busiest thread took more than kBalanceTolerance above the mean, the boundaries between the
   /// shares move so that the measured work is divided evenly (ThreadShares::balance). No result depends
@@ -334,11 +353,19 @@ class Simulation {
   std::vector<ThreadClock> busy_;
   std::vector<double> busy_seconds_;     // scratch for balance_threads
   int balance_steps_ = 0;                // steps measured in busy_
+  double balance_seconds_ = 0.0;         // the wall time of the last balance (balance_if_uneven: made when it pays)
   std::int64_t balances_ = 0;
   void balance_if_uneven();
   std::vector<ElementPush> face_push_, face_wall_push_;  // this step's face forces on the elements
   int threads_ = 1;
-  std::size_t min_per_thread_ = 4096;
+  std::size_t min_per_thread_ = 1024;
+  int threads_asked() const;  // threads() limited by min_per_thread (the governor's most)
+  bool governed_ = false;
+  ThreadGovernor governor_;
+  double governor_wait0_ = 0.0, governor_job0_ = 0.0;  // the pool's totals at the window's start
+  void govern(double step_wall);                        // after a step (thread_governor.hpp)
+  mutable StepTimings timings_;                         // (set_timings)
+  PhaseTimes* phases(int t) { return timings_.on ? &timings_.threads[static_cast<std::size_t>(t)] : nullptr; }
   std::vector<double> x_ref_, y_ref_;  // positions at the last rebuild
   // The travel bound: no element is farther than travel_ from its reference position (x_ref_, y_ref_): the
   // sum over the steps since the last rebuild of the step's largest increment |Δx| plus the rounding of

@@ -1,4 +1,5 @@
 #include "dem/run/run.hpp"
+#include "dem/run/run_threads.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -428,6 +429,8 @@ static RunResult run_opened(const Case& c, const RunOptions& opt, Simulation& si
   ratio_results(probes, res.probes);
 
   res.summary = run_summary(c, sim, res, resolved_si, n_active);
+  res.summary["threads"] = threads_summary(sim, opt.threads_asked > 0 ? opt.threads_asked : opt.threads);
+  if (opt.timings) res.summary["timings"] = timings_summary(sim);
   if (m.discharge.enabled) res.summary["discharge"] = discharge_summary(sim, loop, n_active);
   if (restart)
     res.summary["restart"] = {{"checkpoint", opt.restart.string()}, {"from_case", restart->case_path},
@@ -453,7 +456,8 @@ RunResult run_case(Case c, const RunOptions& opt) {
   // before the model moves into the Simulation; c.model is empty from here on (read sim.model()).
   const nlohmann::json resolved_si = resolved_case_si(c);
   Simulation sim(std::move(c.model));
-  sim.set_threads(opt.threads, opt.min_per_thread);
+  sim.set_threads(opt.threads, opt.min_per_thread, opt.governed);
+  sim.set_timings(opt.timings);
   const Model& m = std::as_const(sim).model();  // the const overload: the mutable one voids the rebuild test
   const std::int64_t total_steps = std::llround(std::ceil(m.numerics.duration / m.numerics.dt - 1e-9));
 

@@ -25,7 +25,10 @@ struct RunOptions {
   bool restart_other_case = false;   //   the checkpoint is the start of this (other) case
   std::int64_t interrupt_at_step = 0;  // tests: behave as if SIGTERM arrived after this step (0: no)
   int threads = 1;  // threads inside the run (Simulation::set_threads); results are the same for any number
-  std::size_t min_per_thread = 4096;  // elements per thread at least (tests: 1)
+  std::size_t min_per_thread = 1024;  // elements per thread at least (tests: 1)
+  int threads_asked = 0;  // what the user asked for, if more than `threads` (summary.json "threads"; 0: = threads)
+  bool governed = true;   // fewer threads while the machine is busy (core/thread_governor.hpp); false: exactly `threads`
+  bool timings = false;   // summary.json "timings": per thread and phase (core/step_timings.hpp)
 };
 
 struct RunResult {

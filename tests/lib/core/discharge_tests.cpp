@@ -178,6 +178,7 @@ TEST_CASE("A closed-gate state started as a discharge drops the gate's contacts 
   // wall slots are made after the gate's slots are dropped (made before, the sweep read the dropped slots)
   dem::RunOptions ob2 = ob;
   ob2.threads = 2;
+  ob2.governed = false;
   ob2.min_per_thread = 1;
   const auto b2 = test::fresh_dir("dem2d_unit_discharge", "opened_2threads");
   REQUIRE(run(open, b2, ob2).status == "completed");

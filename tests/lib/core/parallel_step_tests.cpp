@@ -85,6 +85,7 @@ TEST_CASE("Every output file of a run is the same bit for bit on 1 and 3 threads
       dem::RunOptions o;
       o.out_dir = test::fresh_dir("dem2d_threads", std::string(std::filesystem::path(path).stem()) + "_t" + std::to_string(t));
       o.threads = t;
+      o.governed = false;  // exactly t threads (the governor would choose by the machine's load)
       o.min_per_thread = 1;
       const dem::RunResult r = dem::run_case(c, o);
       REQUIRE(r.status == "completed");
@@ -114,6 +115,7 @@ TEST_CASE("A silo discharge (disks removed, a wall opened, keystones) is the sam
     dem::RunOptions o;
     o.out_dir = test::fresh_dir("dem2d_threads", "discharge_t" + std::to_string(t));
     o.threads = t;
+    o.governed = false;
     o.min_per_thread = 1;
     const dem::RunResult r = dem::run_case(c, o);
     REQUIRE(r.status == "completed");
@@ -137,7 +139,7 @@ TEST_CASE("A thread count below one means one thread, and small runs use fewer t
   CHECK(sim.threads() == 1);
   sim.set_threads(4);
   CHECK(sim.threads() == 4);
-  CHECK(sim.threads_used() == 1);  // fewer than 4096 elements per thread
+  CHECK(sim.threads_used() == 1);  // fewer than 1024 elements per thread
   sim.set_threads(4, 1);
   CHECK(sim.threads_used() == 4);
   sim.set_threads(4, n / 2);

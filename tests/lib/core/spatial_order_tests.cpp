@@ -281,6 +281,7 @@ TEST_CASE("A restart of a reordered run continues bit for bit, on any number of 
     oc.restart = b / "checkpoint.bin";
     oc.checkpoint_at_end = true;
     oc.threads = threads;
+    oc.governed = false;
     oc.min_per_thread = 1;
     REQUIRE(dem::run_case(c, oc).status == "completed");
     const dem::Checkpoint fa = dem::read_checkpoint(a / "checkpoint.bin");
