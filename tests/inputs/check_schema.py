@@ -4,7 +4,7 @@
 Usage: check_schema.py DEM2D_EXECUTABLE SOURCE_DIR WORK_DIR
 
 - The schema is a valid JSON Schema (draft-07).
-- Every case file in cases/ and tests/lib/fixtures/ (and any case file in verification/: a TOML file with
+- Every case file in cases/, tests/lib/fixtures/ and python/examples/ (and any case file in verification/: a TOML file with
   [case] and [numerics]) validates against it (Debian python3-jsonschema, tomllib).
 - Each planted wrong case (tests/lib/fixtures/minimal.toml with one line changed: a misspelled key, a wrong
   type, an unknown unit, an angle without its unit, a word not allowed) is refused by both the schema and
@@ -35,7 +35,7 @@ def errors(doc):
     return [f"{'.'.join(map(str, e.absolute_path)) or '(top)'}: {e.message}" for e in validator.iter_errors(doc)]
 
 
-cases = sorted(p for d in ("cases", "tests/lib/fixtures") for p in (src / d).rglob("*.toml"))
+cases = sorted(p for d in ("cases", "tests/lib/fixtures", "python/examples") for p in (src / d).rglob("*.toml"))
 for p in sorted((src / "verification").rglob("*.toml")):
     doc = tomllib.loads(p.read_text())
     if "case" in doc and "numerics" in doc:
