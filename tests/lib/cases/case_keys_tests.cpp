@@ -1,8 +1,8 @@
 // The case format's key table (case_keys.hpp), from which `dem2d schema` is made, against what the reader
-// itself reads (key_log.hpp): every case file of the project is read with a KeyLog recording; every key the
-// reader accepted must be in the table with a compatible type, dimension, word list and default, and every
-// key of the table must have been read. tests/lib/fixtures/schema/ holds small cases that reach the keys
-// no shipped case uses.
+// itself reads (key_log.hpp): every case file of the project (cases/, tests/lib/fixtures/, python/examples/)
+// is read with a KeyLog recording; every key the reader accepted must be in the table with a compatible
+// type, dimension, word list and default, and every key of the table must have been read.
+// tests/lib/fixtures/schema/ holds small cases that reach the keys no shipped case uses.
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <filesystem>
@@ -24,7 +24,7 @@ namespace {
 
 std::vector<fs::path> case_files() {
   std::vector<fs::path> out;
-  for (const char* dir : {"cases", "tests/lib/fixtures"})
+  for (const char* dir : {"cases", "tests/lib/fixtures", "python/examples"})
     for (const auto& e : fs::recursive_directory_iterator(fs::path(DEM2D_SOURCE_DIR) / dir))
       if (e.is_regular_file() && e.path().extension() == ".toml") out.push_back(e.path());
   std::sort(out.begin(), out.end());
@@ -153,8 +153,8 @@ TEST_CASE("case schema: every table and key of the key table is in it") {
   CHECK(s["$schema"] == "http://json-schema.org/draft-07/schema#");
   CHECK(s["additionalProperties"] == false);
   CHECK(s["properties"]["numerics"]["properties"]["dt"]["x-unit-si"] == "s");
-  CHECK(s["properties"]["contact"]["items"]["properties"]["law"]["enum"] == nlohmann::json({"linear", "face"}));
-  CHECK(s["properties"]["numerics"]["required"] == nlohmann::json({"dt", "duration"}));
+  CHECK(s["properties"]["contact"]["items"]["properties"]["law"]["enum"] == nlohmann::ordered_json({"linear", "face"}));
+  CHECK(s["properties"]["numerics"]["required"] == nlohmann::ordered_json({"dt", "duration"}));
   std::size_t keys = 0;
   for (const dem::TableSpec& t : dem::case_key_tables()) keys += t.keys.size();
   CHECK(s.dump().find("\"kn_from_elastic\"") != std::string::npos);
