@@ -181,6 +181,9 @@ TEST_CASE("Kind-specific tables: refinement order, mode map blocks, bisection to
                              "rel_tol = 0\n[[check]]\nreference = \"free_fall.position\"\nargs = { x0 = 0, v0 = 0, g = 0, t = 0 }\n"
                              "tolerance = 0.1\nreason = \"r\"\n";
   CHECK_THAT(refusal(bisect), StartsWith(at_line(7) + "stability.rel_tol: expected a number in"));
+  std::string bisect_set = bisect;
+  bisect_set.replace(bisect_set.find("rel_tol = 0\n"), 12, "rel_tol = 1e-4\n[[variant]]\nlabel = \"v\"\nset = [\"numerics.dtt=1\"]\n");
+  CHECK_THAT(refusal(bisect_set), StartsWith(at_line(10) + "set: variant \"v\": --set numerics.dtt=1: numerics.dtt: unknown key"));
   CHECK_THAT(refusal(good_study() + "\n[stability]\nlow = 1\nhigh = 2\n"), Contains("stability: a [stability] table needs kind = \"stability\""));
 }
 

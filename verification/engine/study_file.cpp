@@ -411,9 +411,15 @@ dem::Case read_variant_case(const Study& s, const Variant& v, const std::vector<
 }
 
 /// Reads the base case once per variant (with the study's and the variant's overrides, and the
-/// finest level's) and refuses a check of a probe the case does not have, or a check value given in
+/// finest level's; a stability study's without its bisected parameter) and refuses a check of a probe the case does not have, or a check value given in
 /// another unit than the probe's.
 void check_probes(const Study& s, const toml::table& root, const std::string& file) {
+  if (s.kind == Kind::stability)  // no probes to check, but every variant's overrides must read
+    for (const Variant& v : s.variants) {
+      std::vector<std::string> sets = s.set;
+      sets.insert(sets.end(), v.set.begin(), v.set.end());
+      (void)read_variant_case(s, v, sets, root, file);
+    }
   if (s.kind != Kind::single && s.kind != Kind::refinement) return;
   for (const Variant& v : s.variants) {
     std::vector<std::string> sets = s.set;
