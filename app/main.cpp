@@ -8,6 +8,7 @@
 //   dem2d sweep STUDY --design-only [--out DIR]          write its design (design.csv), run nothing
 //   dem2d analyse STUDY --outputs FILE [--out DIR]       analyse outputs of that design computed anywhere
 //   dem2d report [--studies DIR] [--out DIR] [--claims FILE]   write the verification report from study results
+//   dem2d schema                                         print the JSON Schema of the case format
 #include <algorithm>
 #include <cmath>
 #include <csignal>
@@ -26,6 +27,7 @@
 
 #include "dem/cases/case_file.hpp"
 #include "dem/cases/case_reader.hpp"
+#include "dem/cases/case_schema.hpp"
 #include "dem/run/interrupt.hpp"
 #include "dem/run/output_files.hpp"
 #include "dem/run/resolved_case.hpp"
@@ -151,7 +153,8 @@ struct Cli {
   std::string outputs_file;  // analyse: the outputs of the design's runs
   std::string studies_dir = "build/studies", report_dir = "build/report";
   std::string docs_dir, bench_dir, claims_file;
-  CLI::App *run = nullptr, *check = nullptr, *study = nullptr, *sweep = nullptr, *analyse = nullptr, *report = nullptr;
+  CLI::App *run = nullptr, *check = nullptr, *study = nullptr, *sweep = nullptr, *analyse = nullptr, *report = nullptr,
+           *schema = nullptr;
 };
 
 void add_run(CLI::App& app, Cli& o) {
@@ -192,6 +195,11 @@ void add_check(CLI::App& app, Cli& o) {
   o.check = app.add_subcommand("check", "Check a case (keys, units, values, time step) without running it");
   o.check->add_option("case", o.case_file, "Case file (TOML)")->required()->check(CLI::ExistingFile);
   o.check->add_option("--set", o.sets, "Override a case value: key=value");
+}
+
+void add_schema(CLI::App& app, Cli& o) {
+  o.schema = app.add_subcommand("schema", "Print the JSON Schema (draft-07) of the case format, made from the reader's "
+                                          "key table: for editors and TOML language servers (docs/running.md)");
 }
 
 void add_study_and_sweep(CLI::App& app, Cli& o) {
@@ -312,6 +320,10 @@ int dispatch(Cli& o, int argc, char** argv) {
       return cmd_run(o.case_file, o.sets, o.out_dir, o.quiet, o.run_opt);
     }
     if (*o.check) return cmd_check(o.case_file, o.sets);
+    if (*o.schema) {
+      fmt::print("{}\n", dem::case_schema().dump(2));
+      return 0;
+    }
     if (*o.study) return cmd_study(o, false);
     if (*o.sweep) return cmd_study(o, true);
     if (*o.analyse) {
@@ -353,6 +365,7 @@ int main(int argc, char** argv) {
   Cli o;
   add_run(app, o);
   add_check(app, o);
+  add_schema(app, o);
   add_study_and_sweep(app, o);
   add_report(app, o);
   app.footer(kExitCodes);

@@ -157,13 +157,21 @@ TEST_CASE("Reference solvers, their arguments and the probes are checked before 
              StartsWith(at_line(17) + "check.probe: the case " + kFreeFall + " has no probe \"y_ned\"; did you mean \"y_end\"?"));
   CHECK_THAT(refusal(planted("reference = \"free_fall.position\"", "value = \"1.27 s\"")),
              StartsWith(at_line(18) + "check.value: the probe \"y_end\" is in m, the value is"));
-  CHECK_THAT(refusal(planted("set = [\"numerics.dt=1e-4\"]", "set = [\"numerics.dtt=1e-4\"]")), Contains("numerics.dtt"));
+  // a wrong override names its line in the study file first, then what the case reader says of it
+  CHECK_THAT(refusal(planted("set = [\"numerics.dt=1e-4\"]", "set = [\"numerics.dtt=1e-4\"]")),
+             StartsWith(at_line(8) + "set: variant \"z0.3\": --set numerics.dtt=1e-4: numerics.dtt: unknown key"));
+  CHECK_THAT(refusal(planted("set = [\"numerics.dt=5e-5\"]", "set = [\"numerics.dt=1e-4\", \"numerics.dt=5 kg\"]")),
+             StartsWith(at_line(13) + "set: variant \"z0.5\": --set numerics.dt=5 kg: numerics.dt: expected a time"));
+  CHECK_THAT(refusal(planted("kind = \"single\"", "kind = \"single\"\nset = [\"numerics.skin=abc\"]")),
+             StartsWith(at_line(5) + "set: variant \"z0.3\": --set numerics.skin=abc: numerics.skin:"));
 }
 
 TEST_CASE("Kind-specific tables: refinement order, mode map blocks, bisection tolerance", "[study_file]") {
   const std::string fine_to_coarse = planted("kind = \"single\"", "kind = \"refinement\"") +
                                      "\n[refinement]\nparameter = \"numerics.dt\"\nvalues = [1e-5, 2e-5, 4e-5]\n";
   CHECK_THAT(refusal(fine_to_coarse), Contains("refinement.values: expected the levels from coarse to fine"));
+  CHECK_THAT(refusal(planted("kind = \"single\"", "kind = \"refinement\"")),
+             StartsWith(at_line(4) + "study.kind: kind = \"refinement\" needs a [refinement] table (or [[level]] tables)"));
   CHECK_THAT(refusal(planted("kind = \"single\"", "kind = \"refinement\"") + "\n[refinement]\nparameter = \"numerics.dt\"\nvalues = [4e-5, 2e-5]\nvalue = 3\n"),
              Contains("refinement.value: unknown key; did you mean 'values'?"));
   const std::string map = "[study]\ncase = \"" + kFreeFall + "\"\nkind = \"mode_map\"\n[mode_map]\nblocks = [[\"a\", \"b\"]]\n"
@@ -173,6 +181,9 @@ TEST_CASE("Kind-specific tables: refinement order, mode map blocks, bisection to
                              "rel_tol = 0\n[[check]]\nreference = \"free_fall.position\"\nargs = { x0 = 0, v0 = 0, g = 0, t = 0 }\n"
                              "tolerance = 0.1\nreason = \"r\"\n";
   CHECK_THAT(refusal(bisect), StartsWith(at_line(7) + "stability.rel_tol: expected a number in"));
+  std::string bisect_set = bisect;
+  bisect_set.replace(bisect_set.find("rel_tol = 0\n"), 12, "rel_tol = 1e-4\n[[variant]]\nlabel = \"v\"\nset = [\"numerics.dtt=1\"]\n");
+  CHECK_THAT(refusal(bisect_set), StartsWith(at_line(10) + "set: variant \"v\": --set numerics.dtt=1: numerics.dtt: unknown key"));
   CHECK_THAT(refusal(good_study() + "\n[stability]\nlow = 1\nhigh = 2\n"), Contains("stability: a [stability] table needs kind = \"stability\""));
 }
 

@@ -377,10 +377,49 @@ void cross_check(const Study& s, const std::string& file) {
   }
 }
 
+/// "file:line" of the override `kv` in the study file: in [study] set, the variant's set or a [[level]]'s set;
+/// else the variant's table (or [study]).
+std::string override_location(const toml::table& root, const std::string& file, std::size_t variant, const std::string& kv) {
+  std::vector<const toml::node*> lists{root["study"]["set"].node()};
+  if (const toml::array* vs = root["variant"].as_array(); vs && variant < vs->size())
+    if (const toml::table* vt = vs->get(variant)->as_table()) lists.push_back(vt->get("set"));
+  if (const toml::array* ls = root["level"].as_array())
+    for (const toml::node& l : *ls) lists.push_back(l.as_table() ? l.as_table()->get("set") : nullptr);
+  for (const toml::node* list : lists)
+    if (const toml::array* a = list ? list->as_array() : nullptr)
+      for (const toml::node& item : *a)
+        if (item.value_exact<std::string>() == kv) return dem::where(item, file);
+  if (const toml::array* vs = root["variant"].as_array(); vs && variant < vs->size()) return dem::where(*vs->get(variant), file);
+  return dem::where(*root["study"].node(), file);
+}
+
+/// The base case with the overrides of a variant; an error names the study file's line of the override
+/// that caused it (or the variant) before the case's own message.
+dem::Case read_variant_case(const Study& s, const Variant& v, const std::vector<std::string>& sets, const toml::table& root,
+                            const std::string& file) {
+  try {
+    return dem::read_case(s.case_file, sets);
+  } catch (const dem::CaseError& e) {
+    const std::string what = e.what();
+    std::string culprit;  // the override the case names ("--set key=value: key: …")
+    for (const std::string& kv : sets)
+      if (what.rfind("--set " + kv + ":", 0) == 0) culprit = kv;
+    const auto variant = static_cast<std::size_t>(&v - s.variants.data());
+    const std::string label = v.label.empty() ? "" : fmt::format("variant \"{}\": ", v.label);
+    throw dem::CaseError(fmt::format("{}: set: {}{}", override_location(root, file, variant, culprit), label, what));
+  }
+}
+
 /// Reads the base case once per variant (with the study's and the variant's overrides, and the
-/// finest level's) and refuses a check of a probe the case does not have, or a check value given in
+/// finest level's; a stability study's without its bisected parameter) and refuses a check of a probe the case does not have, or a check value given in
 /// another unit than the probe's.
 void check_probes(const Study& s, const toml::table& root, const std::string& file) {
+  if (s.kind == Kind::stability)  // no probes to check, but every variant's overrides must read
+    for (const Variant& v : s.variants) {
+      std::vector<std::string> sets = s.set;
+      sets.insert(sets.end(), v.set.begin(), v.set.end());
+      (void)read_variant_case(s, v, sets, root, file);
+    }
   if (s.kind != Kind::single && s.kind != Kind::refinement) return;
   for (const Variant& v : s.variants) {
     std::vector<std::string> sets = s.set;
@@ -396,7 +435,7 @@ void check_probes(const Study& s, const toml::table& root, const std::string& fi
         throw dem::CaseError(fmt::format("{}:{}: ensemble: variant \"{}\": {}", file, s.ensemble->line, v.label, e.what()));
       }
     }
-    const dem::Case c = dem::read_case(s.case_file, sets);
+    const dem::Case c = read_variant_case(s, v, sets, root, file);
     std::size_t k = 0;
     for (const Check& ch : s.checks) {
       const toml::node& node = *root["check"].as_array()->get(k++);
@@ -453,6 +492,9 @@ Study read_study(const fs::path& file_path) {
   top.mark("refinement");
   top.mark("level");
   if (s.kind == Kind::refinement) {
+    if (!root.get("refinement") && !root.get("level"))  // named at the line that asks for a refinement
+      throw dem::CaseError(fmt::format("{}: study.kind: kind = \"refinement\" needs a [refinement] table (or [[level]] "
+                                       "tables); none is given", dem::where(*root["study"]["kind"].node(), file)));
     s.refinement = read_refinement(root, file);
     s.parameter = s.refinement.parameter;
     s.parameter_label = s.refinement.label;

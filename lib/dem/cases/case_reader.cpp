@@ -5,6 +5,8 @@
 #include <vector>
 #include <fmt/format.h>
 
+#include "dem/cases/key_log.hpp"
+
 namespace dem {
 
 std::string where(const toml::node& n, const std::string& fallback_file) {
@@ -13,6 +15,14 @@ std::string where(const toml::node& n, const std::string& fallback_file) {
   if (file.rfind("--set", 0) == 0) return file;
   return fmt::format("{}:{}", file, src.begin.line);
 }
+
+namespace {
+/// What a getter reads, for the KeyLog (key_log.hpp).
+KeyUse use(KeyKind kind, std::vector<Dimension> dims, nlohmann::json fallback, bool required) {
+  return {kind, std::move(dims), {}, std::move(fallback), required};
+}
+constexpr bool kRequired = true, kOptional = false;
+}  // namespace
 
 TableReader::TableReader(const toml::table& t, std::string path, std::string file, std::string help)
     : t_(t), path_(std::move(path)), file_(std::move(file)), help_(std::move(help)) {}
@@ -66,14 +76,17 @@ double TableReader::to_quantity(const toml::node& n, const std::string& key, Dim
 }
 
 double TableReader::quantity(const std::string& key, Dimension dim) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::quantity, {dim}, nullptr, kRequired));
   return to_quantity(need(key), key, dim);
 }
 double TableReader::quantity(const std::string& key, Dimension dim, double fallback) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::quantity, {dim}, fallback, kOptional));
   used_.insert(key);
   const toml::node* n = t_.get(key);
   return n ? to_quantity(*n, key, dim) : fallback;
 }
 std::optional<double> TableReader::optional_quantity(const std::string& key, Dimension dim) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::quantity, {dim}, nullptr, kOptional));
   used_.insert(key);
   const toml::node* n = t_.get(key);
   if (!n) return std::nullopt;
@@ -81,6 +94,7 @@ std::optional<double> TableReader::optional_quantity(const std::string& key, Dim
 }
 
 std::pair<double, Dimension> TableReader::quantity_either(const std::string& key, Dimension a, Dimension b) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::quantity, {a, b}, nullptr, kRequired));
   const toml::node& n = need(key);
   const auto finite = [&](std::pair<double, Dimension> r) {
     if (!std::isfinite(r.first)) fail(key, fmt::format("expected a finite {}, got {}", describe(r.second), r.first));
@@ -103,6 +117,7 @@ std::pair<double, Dimension> TableReader::quantity_either(const std::string& key
 }
 
 Vec2 TableReader::vector(const std::string& key, Dimension dim) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::vector, {dim}, nullptr, kRequired));
   const toml::node& n = need(key);
   const toml::array* arr = n.as_array();
   if (!arr || arr->size() != 2)
@@ -110,11 +125,13 @@ Vec2 TableReader::vector(const std::string& key, Dimension dim) const {
   return {to_quantity(*arr->get(0), key, dim), to_quantity(*arr->get(1), key, dim)};
 }
 Vec2 TableReader::vector(const std::string& key, Dimension dim, Vec2 fallback) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::vector, {dim}, {fallback.x, fallback.y}, kOptional));
   used_.insert(key);
   return t_.contains(key) ? vector(key, dim) : fallback;
 }
 
 double TableReader::number(const std::string& key) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::number, {}, nullptr, kRequired));
   const toml::node& n = need(key);
   if (auto d = n.value<double>(); d && std::isfinite(*d)) return *d;
   if (auto s = n.value_exact<std::string>()) {
@@ -127,12 +144,14 @@ double TableReader::number(const std::string& key) const {
   fail(key, "expected a plain number");
 }
 double TableReader::number(const std::string& key, double fallback) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::number, {}, fallback, kOptional));
   used_.insert(key);
   return t_.contains(key) ? number(key) : fallback;
 }
 
 double TableReader::number_in(const std::string& key, double lo, double hi, double fallback, bool open_lo,
                               bool open_hi) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::number, {}, fallback, kOptional));
   used_.insert(key);
   if (!t_.contains(key)) return fallback;
   const double v = number(key);
@@ -142,6 +161,7 @@ double TableReader::number_in(const std::string& key, double lo, double hi, doub
 }
 
 Quantity TableReader::any_quantity_of(const toml::node& n, const std::string& key) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::element, {}, nullptr, kOptional));
   Quantity q;
   if (auto s = n.value_exact<std::string>()) {
     try {
@@ -159,9 +179,23 @@ Quantity TableReader::any_quantity_of(const toml::node& n, const std::string& ke
   return q;
 }
 
-Quantity TableReader::any_quantity(const std::string& key) const { return any_quantity_of(need(key), key); }
+Quantity TableReader::any_quantity(const std::string& key) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::quantity, {}, nullptr, kRequired));
+  return any_quantity_of(need(key), key);
+}
+
+void TableReader::mark(const std::string& key) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::other, {}, nullptr, kOptional));
+  used_.insert(key);
+}
+
+double TableReader::quantity_of(const toml::node& n, const std::string& key, Dimension dim) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::element, {dim}, nullptr, kOptional));
+  return to_quantity(n, key, dim);
+}
 
 std::optional<Quantity> TableReader::optional_any_quantity(const std::string& key) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::quantity, {}, nullptr, kOptional));
   used_.insert(key);
   const toml::node* n = t_.get(key);
   if (!n) return std::nullopt;
@@ -169,6 +203,7 @@ std::optional<Quantity> TableReader::optional_any_quantity(const std::string& ke
 }
 
 std::map<std::string, double> TableReader::quantity_table(const std::string& key) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::table, {}, nullptr, kOptional));
   std::map<std::string, double> out;
   used_.insert(key);
   const toml::node* n = t_.get(key);
@@ -180,6 +215,7 @@ std::map<std::string, double> TableReader::quantity_table(const std::string& key
 }
 
 std::int64_t TableReader::integer(const std::string& key, std::int64_t lo, std::int64_t hi) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::integer, {}, nullptr, kRequired));
   const toml::node& n = need(key);
   auto v = n.value_exact<std::int64_t>();
   if (!v || *v < lo || *v > hi) fail(key, fmt::format("expected a whole number from {} to {}", lo, hi));
@@ -187,11 +223,13 @@ std::int64_t TableReader::integer(const std::string& key, std::int64_t lo, std::
 }
 std::int64_t TableReader::integer(const std::string& key, std::int64_t lo, std::int64_t hi,
                                   std::int64_t fallback) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::integer, {}, fallback, kOptional));
   used_.insert(key);
   return t_.contains(key) ? integer(key, lo, hi) : fallback;
 }
 
 bool TableReader::boolean(const std::string& key, bool fallback) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::boolean, {}, fallback, kOptional));
   used_.insert(key);
   const toml::node* n = t_.get(key);
   if (!n) return fallback;
@@ -201,18 +239,23 @@ bool TableReader::boolean(const std::string& key, bool fallback) const {
 }
 
 std::string TableReader::string(const std::string& key) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::string, {}, nullptr, kRequired));
   const toml::node& n = need(key);
   auto v = n.value_exact<std::string>();
   if (!v) fail(key, "expected a string");
   return *v;
 }
 std::string TableReader::string(const std::string& key, const std::string& fallback) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::string, {}, fallback, kOptional));
   used_.insert(key);
   return t_.contains(key) ? string(key) : fallback;
 }
 
 std::string TableReader::choice(const std::string& key, const std::vector<std::string>& allowed,
                                 const std::string& fallback) const {
+  KeyUse u = use(KeyKind::choice, {}, fallback.empty() ? nlohmann::json() : nlohmann::json(fallback), fallback.empty());
+  u.choices = allowed;
+  KeyLog::Guard g(path_, key, std::move(u));
   const std::string v = fallback.empty() ? string(key) : string(key, fallback);
   for (const auto& a : allowed)
     if (a == v) return v;
@@ -222,6 +265,7 @@ std::string TableReader::choice(const std::string& key, const std::vector<std::s
 }
 
 std::vector<std::string> TableReader::strings(const std::string& key) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::strings, {}, nullptr, kOptional));
   used_.insert(key);
   std::vector<std::string> out;
   const toml::node* n = t_.get(key);
@@ -237,6 +281,7 @@ std::vector<std::string> TableReader::strings(const std::string& key) const {
 }
 
 const toml::table* TableReader::table(const std::string& key) const {
+  KeyLog::Guard g(path_, key, use(KeyKind::table, {}, nullptr, kOptional));
   used_.insert(key);
   const toml::node* n = t_.get(key);
   if (!n) return nullptr;

@@ -2,7 +2,8 @@
 // A checked view of one TOML table: typed getters with units, and at the end a check that no unknown
 // key was given ("did you mean …" for a near miss). Every TOML file the project reads goes through it
 // (cases, study files, sensitivity files, refinement tables). Every error names
-// file:line: key: what was expected.
+// file:line: key: what was expected. Each getter records what it read in the thread's KeyLog, if one is
+// recording (key_log.hpp: the check that the case schema matches the reader).
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -61,9 +62,9 @@ class TableReader {
                      const std::string& fallback) const;
   std::vector<std::string> strings(const std::string& key) const;
   const toml::table* table(const std::string& key) const;
-  void mark(const std::string& key) const { used_.insert(key); }  // read by hand
+  void mark(const std::string& key) const;  // read by hand
   /// A value inside an array of `key` (number in SI, or string with a unit), errors named by `key`.
-  double quantity_of(const toml::node& n, const std::string& key, Dimension dim) const { return to_quantity(n, key, dim); }
+  double quantity_of(const toml::node& n, const std::string& key, Dimension dim) const;
 
   /// Throws for any key that was not read, naming the nearest known key ("did you mean …").
   void finish() const;

@@ -86,6 +86,16 @@ const UnitDef* find_unit(std::string_view symbol) {
   return nullptr;
 }
 
+}  // namespace
+
+std::vector<std::string> unit_symbols() {
+  std::vector<std::string> out;
+  for (const UnitDef& u : unit_table) out.emplace_back(u.symbol);
+  return out;
+}
+
+namespace {
+
 char ascii_lower(char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; }
 
 bool iequals(std::string_view a, std::string_view b) {

@@ -36,6 +36,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace dem {
 
@@ -113,6 +114,9 @@ Quantity parse_quantity(std::string_view text);
 /// A bare number without a unit is taken as already SI for any expected dimension except
 /// dims::angle, where it is rejected (write "38 deg" or "0.66 rad").
 double to_si(std::string_view text, Dimension expected);
+
+/// Every unit symbol parse_quantity knows ("m", "kgf", "\u00b0", ...), for the case schema's pattern.
+std::vector<std::string> unit_symbols();
 
 /// For plain numbers in case files (already SI): returns `plain_number` unchanged, except that it is
 /// rejected (UnitError) if expected == dims::angle (unit must be explicit) or if it is not finite.

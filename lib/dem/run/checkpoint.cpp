@@ -63,7 +63,7 @@ struct Reader {
   template <class T>
   T get() {
     static_assert(std::is_trivially_copyable_v<T>);
-    if (pos + sizeof(T) > in.size()) throw OutputError(fmt::format("{}: truncated checkpoint", what));
+    if (pos + sizeof(T) > in.size()) throw CaseError(fmt::format("{}: truncated checkpoint", what));
     T v;
     std::memcpy(&v, in.data() + pos, sizeof v);
     pos += sizeof v;
@@ -76,7 +76,7 @@ struct Reader {
   }
   std::string get_str() {
     const auto n = get<std::uint64_t>();
-    if (n > in.size() - pos) throw OutputError(fmt::format("{}: truncated checkpoint", what));
+    if (n > in.size() - pos) throw CaseError(fmt::format("{}: truncated checkpoint", what));
     std::string s(in.substr(pos, n));
     pos += n;
     return s;
@@ -84,7 +84,7 @@ struct Reader {
   template <class T>
   void get_vec(std::vector<T>& v) {
     const auto n = get<std::uint64_t>();
-    if (n > (in.size() - pos) / sizeof(T)) throw OutputError(fmt::format("{}: truncated checkpoint", what));
+    if (n > (in.size() - pos) / sizeof(T)) throw CaseError(fmt::format("{}: truncated checkpoint", what));
     v.resize(n);
     for (T& x : v) x = get<T>();
   }
@@ -133,7 +133,7 @@ void put_slots(Writer& w, const LinearPairSlots& v) {
 }
 void get_slots(Reader& r, LinearPairSlots& v) {
   const auto n = r.get<std::uint64_t>();
-  if (n > r.in.size()) throw OutputError(fmt::format("{}: truncated checkpoint", r.what));
+  if (n > r.in.size()) throw CaseError(fmt::format("{}: truncated checkpoint", r.what));
   v.clear();
   v.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -153,7 +153,7 @@ void put_slots(Writer& w, const std::vector<Slot>& v) {
 template <class Slot>
 void get_slots(Reader& r, std::vector<Slot>& v) {
   const auto n = r.get<std::uint64_t>();
-  if (n > r.in.size()) throw OutputError(fmt::format("{}: truncated checkpoint", r.what));
+  if (n > r.in.size()) throw CaseError(fmt::format("{}: truncated checkpoint", r.what));
   v.assign(n, Slot{});
   for (Slot& s : v) get_slot(r, s);
 }
@@ -201,12 +201,12 @@ struct SimulationAccess {
       try {
         sim.restore_order(ids);
       } catch (const std::invalid_argument& x) {
-        throw OutputError(fmt::format("{}: corrupt checkpoint ({})", file, x.what()));
+        throw CaseError(fmt::format("{}: corrupt checkpoint ({})", file, x.what()));
       }
     }
     for (auto* v : {&e.x, &e.y, &e.phi, &e.dx, &e.dy, &e.dphi, &e.vx, &e.vy, &e.omega, &e.fx, &e.fy, &e.moment}) {
       r.get_vec(*v);
-      if (v->size() != n) throw OutputError(fmt::format("{}: corrupt checkpoint (element arrays)", file));
+      if (v->size() != n) throw CaseError(fmt::format("{}: corrupt checkpoint (element arrays)", file));
     }
     r.get_vec(e.active);
     check_element_state(file, e);
@@ -223,7 +223,7 @@ struct SimulationAccess {
     sim.tested_step_ = -1;  // the next step makes its own rebuild test
     sim.travel_ = Simulation::kTravelUnknown;  // not saved: the exact rebuild test until the next rebuild
     sim.forces_step_ = sim.step_;  // the contact resultants were saved with the step (write_state)
-    if (r.pos != r.in.size()) throw OutputError(fmt::format("{}: corrupt checkpoint (trailing state bytes)", file));
+    if (r.pos != r.in.size()) throw CaseError(fmt::format("{}: corrupt checkpoint (trailing state bytes)", file));
     if (other_case) start_other_case(sim, file);
     // derived from the slot lists (not saved): made once they are final, since another case may drop wall
     // slots (the sweep's shares and the contact index would otherwise still count them)
@@ -321,21 +321,31 @@ void write_checkpoint(const std::filesystem::path& file, const Simulation& sim, 
 
 std::uint64_t checkpoint_checksum(std::string_view bytes) { return fnv1a(bytes); }
 
-Checkpoint read_checkpoint(const std::filesystem::path& file) { return parse_checkpoint(read_file(file), file.string()); }
+// A checkpoint is an input, as a case is: every error reading it is a CaseError (exit status 2), never an
+// OutputError (4: an output could not be written).
+Checkpoint read_checkpoint(const std::filesystem::path& file) {
+  std::string bytes;
+  try {
+    bytes = read_file(file);
+  } catch (const OutputError& e) {
+    throw CaseError(e.what());
+  }
+  return parse_checkpoint(bytes, file.string());
+}
 
 Checkpoint parse_checkpoint(std::string_view bytes, const std::string& what) {
   if (bytes.compare(0, sizeof kMagic - 1, kMagic) != 0)
-    throw OutputError(fmt::format("{}: not a dem2d checkpoint", what));
-  if (bytes.size() < sizeof kMagic - 1 + 8 + 8) throw OutputError(fmt::format("{}: truncated checkpoint", what));
+    throw CaseError(fmt::format("{}: not a dem2d checkpoint", what));
+  if (bytes.size() < sizeof kMagic - 1 + 8 + 8) throw CaseError(fmt::format("{}: truncated checkpoint", what));
   Reader r{bytes, sizeof kMagic - 1, what};
   const auto version = r.get<std::uint32_t>();
   if (version != kCheckpointVersion)
-    throw OutputError(fmt::format("{}: checkpoint format version {}, this dem2d reads version {}", what, version, kCheckpointVersion));
-  if (r.get<std::uint32_t>() != 0x01020304u) throw OutputError(fmt::format("{}: checkpoint written with another byte order", what));
+    throw CaseError(fmt::format("{}: checkpoint format version {}, this dem2d reads version {}", what, version, kCheckpointVersion));
+  if (r.get<std::uint32_t>() != 0x01020304u) throw CaseError(fmt::format("{}: checkpoint written with another byte order", what));
   std::uint64_t sum;
   std::memcpy(&sum, bytes.data() + bytes.size() - 8, 8);
   if (sum != fnv1a(std::string_view(bytes).substr(0, bytes.size() - 8)))
-    throw OutputError(fmt::format("{}: checkpoint checksum mismatch (the file is damaged)", what));
+    throw CaseError(fmt::format("{}: checkpoint checksum mismatch (the file is damaged)", what));
   r.in = std::string_view(bytes).substr(0, bytes.size() - 8);
   Checkpoint ck;
   ck.file = what;
@@ -344,14 +354,14 @@ Checkpoint parse_checkpoint(std::string_view bytes, const std::string& what) {
   try {
     ck.meta = nlohmann::json::parse(r.get_str());
   } catch (const nlohmann::json::exception&) {
-    throw OutputError(fmt::format("{}: corrupt checkpoint (meta)", what));
+    throw CaseError(fmt::format("{}: corrupt checkpoint (meta)", what));
   }
   ck.step = r.get<std::int64_t>();
   ck.time = r.get<double>();
   ck.dt = r.get<double>();
   ck.state = r.get_str();
   r.get_vec(ck.loop);
-  if (r.pos != r.in.size()) throw OutputError(fmt::format("{}: corrupt checkpoint (trailing bytes)", what));
+  if (r.pos != r.in.size()) throw CaseError(fmt::format("{}: corrupt checkpoint (trailing bytes)", what));
   check_checkpoint_header(ck);
   check_finite(what, "run state", std::vector<double>(ck.loop.begin(), ck.loop.begin() + std::min<std::size_t>(ck.loop.size(), 11)));
   return ck;

@@ -45,7 +45,7 @@ void write_checkpoint(const std::filesystem::path& file, const Simulation& sim, 
                       const std::vector<double>& loop);
 
 /// Reads and validates (magic, version, byte order, checksum, the header's numbers) a checkpoint. Throws
-/// OutputError naming the file.
+/// CaseError naming the file: a checkpoint is an input (exit status 2, as a wrong case).
 Checkpoint read_checkpoint(const std::filesystem::path& file);
 /// The same from the file's bytes (`file` only names it in errors).
 Checkpoint parse_checkpoint(std::string_view bytes, const std::string& file);

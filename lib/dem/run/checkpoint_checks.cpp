@@ -11,7 +11,7 @@
 namespace dem {
 
 void corrupt_checkpoint(const std::string& file, const std::string& field, const std::string& what) {
-  throw OutputError(fmt::format("{}: corrupt checkpoint ({}: {})", file, field, what));
+  throw CaseError(fmt::format("{}: corrupt checkpoint ({}: {})", file, field, what));
 }
 
 void check_checkpoint_header(const Checkpoint& ck) {

@@ -2,8 +2,8 @@
 // A checkpoint's state checked field by field before a Simulation takes it (checkpoint.cpp), as a case is:
 // a checksum only proves the file was not damaged, not that it was written by dem2d. Indices within
 // their tables (elements, walls, laws of the right kind), flags 0 or 1, every number finite, lists of
-// the lengths the case implies and sorted as the rebuild's merge expects. Every error is an OutputError
-// "FILE: corrupt checkpoint (FIELD: what)".
+// the lengths the case implies and sorted as the rebuild's merge expects. Every error is a CaseError (an input
+// error, exit status 2) "FILE: corrupt checkpoint (FIELD: what)".
 #include <cstddef>
 #include <string>
 #include <vector>
