@@ -91,3 +91,11 @@ TEST_CASE("discharge: the keystone is the disk over the slit nearest its mid-poi
   m.elements.active[1] = 0;
   CHECK(*dem::keystone(m) == 4);
 }
+
+TEST_CASE("discharge: of two keystones at the same distance the lower id is taken whatever the index", "[discharge]") {
+  auto m = silo_floor({{-0.005, 0.004}, {0.005, 0.004}});  // mirror images: the same distance, bit for bit
+  for (const bool swap : {false, true}) {
+    m.elements.id = swap ? std::vector<std::uint32_t>{7, 3} : std::vector<std::uint32_t>{3, 7};
+    CHECK(*dem::keystone(m) == (swap ? 1u : 0u));
+  }
+}
