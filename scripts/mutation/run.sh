@@ -13,12 +13,15 @@
 #     --work DIR       copy, build and results here (default /tmp/dem2d_mutation); reused if present
 #     --unit-timeout S, --verification-timeout S   per ctest test (default 120 s, 900 s)
 #     --check          only check that every mutant applies exactly once, then exit
+#     --mutants FILE   the list to run (default mutants.txt; generate.py writes others)
+#     --ccache         build through ccache (with CCACHE_BASEDIR above --work, the first build of the
+#                      copy reuses the objects of a checkout's build/: the copy builds in <work>/src/build)
 #   IDs: run only these mutants.
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
 repo=$(cd "$here/../.." && pwd)
-mutants="$here/mutants.txt"
+mutants="$here/mutants.txt" ccache=0
 tool="$here/mutants.py"
 work=/tmp/dem2d_mutation
 rev="" tests_rev="" from=1 count=100000 unit_only=0 unit_timeout=120 ver_timeout=900 check=0
@@ -34,7 +37,9 @@ while (($#)); do
     --unit-timeout) unit_timeout=$2; shift ;;
     --verification-timeout) ver_timeout=$2; shift ;;
     --check) check=1 ;;
-    -h|--help) sed -n 2,20p "$0"; exit 0 ;;
+    --mutants) mutants=$(realpath "$2"); shift ;;
+    --ccache) ccache=1 ;;
+    -h|--help) sed -n 2,23p "$0"; exit 0 ;;
     -*) echo "unknown option $1" >&2; exit 2 ;;
     *) ids+=("$1") ;;
   esac
@@ -43,7 +48,7 @@ done
 
 if ((check)); then exec python3 "$tool" check "$mutants" "$repo"; fi
 
-src="$work/src" build="$work/build" orig="$work/orig"
+src="$work/src" build="$work/src/build" orig="$work/orig"
 mkdir -p "$work" "$orig"
 if [[ ! -d "$src" ]]; then
   mkdir -p "$src"
@@ -68,7 +73,9 @@ run_ctest() {  # label timeout
 }
 
 if [[ ! -f "$build/CMakeCache.txt" ]]; then
-  nice -n 15 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release >"$work/configure.log" 2>&1
+  launcher=()
+  ((ccache)) && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+  nice -n 15 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >"$work/configure.log" 2>&1
 fi
 # The unmutated suite must pass, or every mutant would count as killed.
 if [[ ! -f "$work/baseline.unit.ok" ]]; then

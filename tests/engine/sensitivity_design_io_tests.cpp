@@ -77,6 +77,8 @@ TEST_CASE("Sample and analyse apart: design.csv evaluated elsewhere gives the in
   CHECK(a.find(",\"Δt\",dt,") != std::string::npos);
   CHECK(a.find(",\"θ:Δt\",theta:dt,S2,") != std::string::npos);
   CHECK(swept.passed == analysed.passed);
+  // the second-order table states its run count, N (2d + 2) = 64 × 8 (a generated mutant, issue 40, wrote N / 8)
+  CHECK(slurp(root / "sweep" / "result.json").find("BA_i, N = 64, 512 runs;") != std::string::npos);
   // A run missing from the outputs is a failed run; a bad number is an error at its line.
   std::ofstream(root / "bad.csv") << "run,f\n0,1.5\n1,abc\n";
   CHECK_THROWS_WITH(ver::analyse_sensitivity(f, root / "bad.csv", options(root / "bad")), Catch::Contains("bad.csv:3: f: expected a number"));

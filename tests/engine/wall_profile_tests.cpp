@@ -128,4 +128,6 @@ TEST_CASE("A figure of walls reads, and its keys are refused where they do not b
              Contains("needs z2"));
   CHECK_THAT(study_refusal("walls = [\"left\"]\ncomponent = \"mobilisation\"\nargs = { mu_w = 0.0 }\n"), Contains("mu_w > 0"));
   CHECK_THAT(study_refusal("y = \"t\"\ncomponent = \"fn\"\n"), Contains("needs walls"));
+  CHECK_THAT(study_refusal("walls = [\"left\"]\ncomponent = \"fn\"\ny_from_start = true\n"),
+             Contains("y_from_start") && Contains("not for a figure of walls"));
 }

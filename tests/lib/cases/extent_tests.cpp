@@ -57,6 +57,8 @@ TEST_CASE("check: geometry outside the represented extent is refused with file:l
        "extent_lattice.toml:15: lattice.0.origin"},
       {"ordered", "[[arrangement]]\nkind = \"ordered\"\nmaterial = \"d\"\nradius = 0.01\ns = 4\nleft = 0.0\nright = 0.2\nfloor = 1e7\nrows = 2\n",
        "extent_ordered.toml:19: arrangement.0.floor"},
+      {"ordered_left", "[[arrangement]]\nkind = \"ordered\"\nmaterial = \"d\"\nradius = 0.01\ns = 4\nleft = -1e7\nright = 0.2\nfloor = 0.0\nrows = 2\n",
+       "extent_ordered_left.toml:17: arrangement.0.left"},
   };
   for (const Bad& b : bad) {
     INFO(b.name);

@@ -224,6 +224,7 @@ TEST_CASE("picture: [output] picture keys take units and name file:line: key on 
                             Bad{"picture_every = \"1e-7 s\"", "output.picture_every", "shorter than dt"},
                             Bad{"picture_every = \"-1 s\"", "output.picture_every", "must not be negative"},
                             Bad{"picture_times = [\"2 us\", \"1 us\"]", "output.picture_times", "must increase strictly"},
+                            Bad{"picture_times = [\"1 us\", \"1 us\"]", "output.picture_times", "must increase strictly"},
                             Bad{"picture_times = \"1 us\"", "output.picture_times", "non-empty array"},
                             Bad{"picture_width = 10", "output.picture_width", "64"},
                             Bad{"picture_max_force = \"2 N/m\"", "output.picture_max_force", "expected a force"},
