@@ -188,19 +188,12 @@ def main():
         save()
 
     threads, codes = all_threads, all_codes
-    if a.silo:
-        try:
-            silo(a, codes, opts, threads, out, results)
-        except (RuntimeError, OSError) as e:
-            print(f"silo failed: {e}", file=sys.stderr)
-        print(f"[{time.time() - t_start:.0f} s] silo done", file=sys.stderr, flush=True)
-        save()
-    if a.oversubscribe:
-        try:
-            oversubscribed(a, codes, opts, out, results, save)
-        except (RuntimeError, OSError) as e:
-            print(f"oversubscription failed: {e}", file=sys.stderr)
-        print(f"[{time.time() - t_start:.0f} s] oversubscription done", file=sys.stderr, flush=True)
+    for name, wanted, part in (("silo", a.silo, lambda: silo(a, codes, opts, threads, out, results)),
+                               ("oversubscription", a.oversubscribe, lambda: oversubscribed(a, codes, opts, out, results, save))):
+        if wanted:
+            attempt(name, part)
+            print(f"[{time.time() - t_start:.0f} s] {name} done", file=sys.stderr, flush=True)
+            save()
     results["seconds"] = time.time() - t_start
     save()
     table = make_table(results)

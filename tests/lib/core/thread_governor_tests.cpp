@@ -118,8 +118,8 @@ TEST_CASE("Changing the thread count between steps, as the governor does, change
   };
   const std::vector<Switched> cases = {
       {"cases/bench/settle_10k.toml", {"numerics.duration=3.2e-3"}, 800},
-      {"cases/beam/mortar_2x8.toml", {"numerics.duration=2e-3"}, 1500},
-      {"cases/silo/static_11_12.toml", {"numerics.duration=0.05 s"}, 500},
+      {"cases/beam/mortar_2x8.toml", {"numerics.duration=2e-3"}, 800},
+      {"cases/silo/static_11_12.toml", {"numerics.duration=0.05 s"}, 300},
   };
   for (const Switched& sc : cases) {
     CAPTURE(sc.path);
