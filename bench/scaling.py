@@ -18,18 +18,17 @@ import argparse
 import json
 import os
 import platform
-import re
 import subprocess
 import sys
 import time
 from pathlib import Path
 
 from machine import cpu_model
+from suite import LOOP  # LAMMPS' "Loop time of …" line
 
 ROOT = Path(__file__).resolve().parent.parent
 BENCH = ROOT / "bench"
 SETTLE = {"1e4": (50, 200), "1e5": (200, 500), "1e6": (500, 2000)}  # rows, cols (make_settle_case.py)
-LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 
 
 def sh(cmd, **kw):

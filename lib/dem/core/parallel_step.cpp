@@ -45,8 +45,7 @@ void Simulation::govern(double step_wall) {
   if (!governor_.add_step(step_wall)) return;
   double share = -1.0;
   if (workers_.pool) {
-    double waits = 0.0;
-    for (const PoolThreadTimes& p : workers_.pool->times()) waits += p.wait + p.wake;
+    const double waits = workers_.pool->wait_seconds();
     const double jobs = workers_.pool->job_seconds();
     const double threads = static_cast<double>(workers_.pool->active());
     if (jobs > governor_job0_) share = (waits - governor_wait0_) / (threads * (jobs - governor_job0_));

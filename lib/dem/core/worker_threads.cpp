@@ -3,9 +3,9 @@
 #include <pthread.h>
 #include <time.h>
 
-#include <chrono>
 #include <cstdlib>
 
+#include "dem/core/step_timings.hpp"
 #include "dem/core/usable_cores.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -22,10 +22,6 @@ inline void cpu_relax() {
 #if defined(__x86_64__) || defined(__i386__)
   _mm_pause();
 #endif
-}
-
-double now_seconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 // How long a wait spins before it sleeps: longer than the spread of the threads' ends in a step and the
@@ -47,7 +43,7 @@ double default_spin_seconds() {
 
 void WorkerThreads::await_change(const std::atomic<std::uint32_t>& a, std::uint32_t old, int t) {
   if (a.load(std::memory_order_acquire) != old) return;
-  const double start = spin_seconds_ > 0.0 || timing_ ? now_seconds() : 0.0;
+  const double start = spin_seconds_ > 0.0 || timing_ ? phase_clock() : 0.0;
   bool changed = false;
   for (int k = 1; spin_seconds_ > 0.0; ++k) {
     if (a.load(std::memory_order_acquire) != old) {
@@ -55,13 +51,13 @@ void WorkerThreads::await_change(const std::atomic<std::uint32_t>& a, std::uint3
       break;
     }
     cpu_relax();
-    if (k % 32 == 0 && now_seconds() - start > spin_seconds_) break;
+    if (k % 32 == 0 && phase_clock() - start > spin_seconds_) break;
   }
   if (!changed) {
     if (timing_) ++done_[static_cast<std::size_t>(t)].times.sleeps;
     while (a.load(std::memory_order_acquire) == old) a.wait(old, std::memory_order_acquire);
   }
-  if (timing_) done_[static_cast<std::size_t>(t)].times.wait += now_seconds() - start;
+  if (timing_) done_[static_cast<std::size_t>(t)].times.wait += phase_clock() - start;
 }
 
 WorkerThreads::WorkerThreads(int threads)
@@ -97,23 +93,29 @@ std::vector<PoolThreadTimes> WorkerThreads::times() const {
   return out;
 }
 
+double WorkerThreads::wait_seconds() const {
+  double sum = 0.0;
+  for (const Done& d : done_) sum += d.times.wait + d.times.wake;
+  return sum;
+}
+
 void WorkerThreads::work(int t) {
   pool_thread = t;
   std::uint32_t seen = 0;
   for (;;) {
     // between jobs: waiting for the next one is not a wait inside a job (timing: the wake-up is)
     if (generation_.load(std::memory_order_acquire) == seen) {
-      const double start = now_seconds();
+      const double start = phase_clock();
       for (int k = 1; spin_seconds_ > 0.0 && generation_.load(std::memory_order_acquire) == seen; ++k) {
         cpu_relax();
-        if (k % 32 == 0 && now_seconds() - start > spin_seconds_) break;
+        if (k % 32 == 0 && phase_clock() - start > spin_seconds_) break;
       }
       while (generation_.load(std::memory_order_acquire) == seen) generation_.wait(seen, std::memory_order_acquire);
     }
     seen = generation_.load(std::memory_order_acquire);
     if (stop_) return;
     if (t < job_active_) {  // in this job (the others only say that they saw it)
-      if (timing_) done_[static_cast<std::size_t>(t)].times.wake += now_seconds() - job_start_;
+      if (timing_) done_[static_cast<std::size_t>(t)].times.wake += phase_clock() - job_start_;
       job_(context_, t);
     }
     if (busy_.fetch_sub(1, std::memory_order_acq_rel) == 1) busy_.notify_all();
@@ -121,7 +123,7 @@ void WorkerThreads::work(int t) {
 }
 
 void WorkerThreads::run_job(void (*job)(void*, int), void* context) {
-  const double start = timing_ ? now_seconds() : 0.0;
+  const double start = timing_ ? phase_clock() : 0.0;
   job_active_ = active_;  // no worker reads it now: each one said it saw the last job
   if (active_ == 1) {
     job(context, 0);
@@ -138,7 +140,7 @@ void WorkerThreads::run_job(void (*job)(void*, int), void* context) {
     for (std::uint32_t left; (left = busy_.load(std::memory_order_acquire)) != 0;) await_change(busy_, left, 0);
   }
   if (timing_) {
-    job_seconds_ += now_seconds() - start;
+    job_seconds_ += phase_clock() - start;
     ++jobs_;
   }
 }

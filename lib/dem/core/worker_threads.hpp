@@ -40,6 +40,8 @@ class WorkerThreads {
   void set_timing(bool on) { timing_ = on; }
   /// Per thread, since set_timing(true); thread 0's entry also has the jobs' wall time in job_seconds().
   std::vector<PoolThreadTimes> times() const;
+  /// The waits and wake-ups of every thread, summed [s] (the governor reads it every window).
+  double wait_seconds() const;
   double job_seconds() const { return job_seconds_; }
   std::int64_t jobs() const { return jobs_; }
   bool spins() const { return spin_seconds_ > 0.0; }
