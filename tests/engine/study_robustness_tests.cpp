@@ -234,3 +234,36 @@ TEST_CASE("Bad trend and figure declarations get a located error", "[study]") {
   std::ofstream(g, std::ios::app) << "\n[[figure]]\ny = \"t\"\nx_range = [1.0, 0.0]\n";
   CHECK_THROWS_WITH(ver::run_study(g, quiet(out)), Contains("figure.x_range") && Contains("lo < hi"));
 }
+
+TEST_CASE("A trend check follows the order its variants list names and a figure can show ratios to one variant", "[study]") {
+  // The list names K19 before K18 (file order: K18, K19): the steps and the values shown follow the list.
+  const fs::path f = trend_study("trend_order", "increasing", "-1e-9");
+  std::ofstream(f, std::ios::app) << "\n[[check]]\nprobe = \"overlap\"\nlabel = \"listed order\"\ntrend = \"decreasing\"\n"
+                                     "variants = [\"K19\", \"K18\"]\ntolerance = -1e-9\nreason = \"test\"\n"
+                                     "\n[[figure]]\nid = \"ratio\"\nprobe = \"overlap\"\nx_arg = \"n\"\ny_relative_to = \"K19\"\n";
+  const auto r = ver::run_study(f, quiet(fresh_dir("trend_order_out")));
+  const auto* c = check_named(r.json, "listed order");
+  REQUIRE(c);
+  const std::string note = (*c)["note"].get<std::string>();
+  REQUIRE(note.find("K19: ") != std::string::npos);
+  CHECK(note.find("K19: ") < note.find("K18: "));
+  // y over K19's value: K19's point is exactly 1, K18's equal to it up to round-off (the same overlap).
+  const nlohmann::json* fig = nullptr;
+  for (const auto& x : r.json["figures"])
+    if (x["id"] == "ratio") fig = &x;
+  REQUIRE(fig);
+  const auto& y = (*fig)["curves"][0]["y"];
+  REQUIRE(y.size() == 2);
+  CHECK(y[1].get<double>() == 1.0);
+  CHECK(y[0].get<double>() == Approx(1.0).epsilon(1e-9));
+}
+
+TEST_CASE("y_relative_to names a variant of the study and needs a probe figure", "[study]") {
+  const fs::path out = fresh_dir("relative_bad_out");
+  const fs::path f = trend_study("relative_bad", "increasing", "-1e-9");
+  std::ofstream(f, std::ios::app) << "\n[[figure]]\nid = \"ratio\"\nprobe = \"overlap\"\nx_arg = \"n\"\ny_relative_to = \"K20\"\n";
+  CHECK_THROWS_WITH(ver::run_study(f, quiet(out)), Contains("figure.y_relative_to") && Contains("no variant \"K20\""));
+  const fs::path g = study_copy("relative_series", {}, {}, "");
+  std::ofstream(g, std::ios::app) << "\n[[figure]]\ny = \"t\"\ny_relative_to = \"K18\"\n";
+  CHECK_THROWS_WITH(ver::run_study(g, quiet(out)), Contains("figure.y_relative_to") && Contains("needs a probe figure"));
+}

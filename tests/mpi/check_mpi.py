@@ -22,7 +22,7 @@ import time
 from pathlib import Path
 
 VOLATILE = {"provenance", "wall_seconds", "cpu_seconds", "wall_time_s", "element_steps_per_second",
-            "mean element-steps per second", "eps",
+            "mean element-steps per second", "eps", "seconds_per_step",
             "threads", "timings"}  # the machine's side of a run: usable cores differ under mpiexec's core binding
 
 

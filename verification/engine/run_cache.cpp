@@ -45,6 +45,7 @@ std::optional<CachedRun> read_cached(const std::filesystem::path& entry) {
       r.code_version = p->value("code_version", "");
       r.date = p->value("date", "");
     }
+    r.seconds_per_step = j.value("seconds_per_step", 0.0);
     return r;
   } catch (const std::exception&) {
     return std::nullopt;  // unreadable: run again
@@ -56,6 +57,7 @@ void write_cached(const std::filesystem::path& entry, const CachedRun& run, cons
   nlohmann::json probes = nlohmann::json::object();
   for (const auto& [k, v] : run.probes) probes[k] = v ? nlohmann::json(*v) : nlohmann::json(nullptr);
   dem::write_file_atomic(entry, nlohmann::json{{"status", run.status}, {"message", run.message}, {"eps", run.eps},
+                                               {"seconds_per_step", run.seconds_per_step},
                                                {"probes", probes}, {"case", case_path}, {"overrides", sets},
                                                {"code", code_identity()}, {"provenance", dem::provenance()}}
                                     .dump() + "\n", false);

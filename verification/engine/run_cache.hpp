@@ -31,6 +31,7 @@ struct CachedRun {
   double eps = 0.0;  // element-steps per second
   std::map<std::string, std::optional<double>> probes;
   std::string code_version, date;  // of the run that wrote the entry (read back only)
+  double seconds_per_step = 0.0;   // wall clock per step of that run (0: not recorded)
 };
 
 /// The cache file of a run, in `dir`: keyed by the code identity, the resolved case (its content after

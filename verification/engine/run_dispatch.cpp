@@ -28,7 +28,8 @@ RunReply run_here(const RunRequest& req, const std::filesystem::path& out_dir) {
     dem::RunOptions o;
     o.out_dir = out_dir;
     const dem::RunResult r = dem::run_case(dem::read_case(req.case_file, req.sets), o);
-    return {r.status, r.message, r.element_steps_per_second, r.probes};
+    const double per_step = r.steps > 0 ? r.wall_seconds / static_cast<double>(r.steps) : 0.0;
+    return {r.status, r.message, r.element_steps_per_second, r.probes, per_step};
   } catch (const dem::CaseError& e) {
     return {"case-error", e.what(), 0.0, {}};
   }

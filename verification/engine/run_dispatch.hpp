@@ -32,6 +32,7 @@ struct RunReply {
   std::string status, message;
   double eps = 0.0;  // element-steps per second
   std::map<std::string, std::optional<double>> probes;
+  double seconds_per_step = 0.0;  // the time loop's wall clock over its steps (a timing, not a result)
 };
 
 using RunDone = std::function<void(std::size_t, RunReply&)>;

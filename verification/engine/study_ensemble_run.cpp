@@ -96,16 +96,18 @@ std::vector<RunOut> fold_members(StudyRun& run, const std::vector<RunOut>& runs)
       stats[name] = ensemble_stat(values, s.ensemble->confidence);
       out.probes[name] = stats[name].mean;
     }
-    double eps = 0.0;
+    double eps = 0.0, per_step = 0.0;
     for (std::size_t k = 0; k < nm; ++k) {
       const RunOut& m = runs[vi * nm + k];
       eps += m.eps / static_cast<double>(nm);
+      per_step += m.seconds_per_step / static_cast<double>(nm);
       if (m.status == "blow-up" && out.status != "blow-up") {  // a blown-up member is said, not averaged away
         out.status = m.status;
         out.message = fmt::format("member {}: {}", k + 1, m.message);
       }
     }
     out.eps = eps;
+    out.seconds_per_step = per_step;
     folded.push_back(out);
     run.ensemble_stats.push_back(std::move(stats));
   }

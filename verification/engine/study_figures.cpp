@@ -44,6 +44,13 @@ nlohmann::json probe_curves(const StudyRun& run, const Figure& f) {
     const double g = v.args.count(f.group_arg) ? v.args.at(f.group_arg) : 0.0;
     if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
   }
+  double y_unit = 1.0;  // y_relative_to: that variant's value of the probe
+  if (!f.y_relative_to.empty()) {
+    y_unit = std::nan("");
+    for (std::size_t vi = 0; vi < s.variants.size() && vi < run.finest_runs.size(); ++vi)
+      if (s.variants[vi].label == f.y_relative_to)
+        if (const std::optional<double> y0 = probe_of(run.finest_runs[vi], f.probe); y0 && *y0 != 0.0) y_unit = *y0;
+  }
   for (double g : groups) {
     std::vector<double> px, py, rx, ry;
     std::map<std::string, double> ref_args;
@@ -53,7 +60,7 @@ nlohmann::json probe_curves(const StudyRun& run, const Figure& f) {
       if ((v.args.count(f.group_arg) ? v.args.at(f.group_arg) : 0.0) != g) continue;
       const std::optional<double> y = probe_of(run.finest_runs[vi], f.probe);
       px.push_back(v.args.at(f.x_arg) * f.x_scale);
-      py.push_back(y ? (*y - f.y_offset) * f.y_scale : std::nan(""));
+      py.push_back(y ? (*y / y_unit - f.y_offset) * f.y_scale : std::nan(""));
       if (!f.solver.empty()) {
         std::map<std::string, double> args = v.args;
         for (const auto& [k, x] : f.args) args[k] = x;

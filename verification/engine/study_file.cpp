@@ -281,6 +281,13 @@ Figure read_figure(const Study& s, const TableReader& r, const toml::node& n) {
   f.group_label = r.string("group_label", f.group_arg);
   f.reference_points = r.integer("reference_points", 0, 100000, 0);
   f.reference_per_variant = r.boolean("reference_per_variant", false);
+  f.y_relative_to = r.string("y_relative_to", "");
+  if (!f.y_relative_to.empty()) {
+    if (f.probe.empty()) r.fail("y_relative_to", "needs a probe figure (probe = ...)");
+    if (!f.solver.empty()) r.fail("y_relative_to", "a figure of ratios has no reference solver");
+    const bool known = std::any_of(s.variants.begin(), s.variants.end(), [&](const Variant& v) { return v.label == f.y_relative_to; });
+    if (!known) r.fail("y_relative_to", fmt::format("no variant \"{}\" in the study", f.y_relative_to));
+  }
   if (!f.probe.empty() && f.x_arg == "t") r.fail_at(n, "x_arg", "a probe figure needs x_arg: the variant argument on x");
   for (const char* key : {"x_range", "y_range"}) {
     r.mark(key);

@@ -70,6 +70,7 @@ struct Figure {
   // A figure of probe values across variants: x = the variant argument x_arg, y = the probe, one
   // curve per distinct value of group_arg (or one curve), plus the reference solver if given.
   std::string probe, group_arg, group_label;
+  std::string y_relative_to;  // probe figure: each y over this variant's value of the probe (Fig. 10(c)'s cost ratio)
   std::int64_t reference_points = 0;   // > 1: the reference on a uniform grid of x_arg over the span
   bool reference_per_variant = false;  // series figure: one reference curve per variant (its own args)
   std::map<std::string, std::string> curve_labels;  // legend words per series quantity / solver

@@ -104,7 +104,20 @@ void write_levels_csv(const StudyRun& run, const std::vector<RunOut>& runs, std:
   dem::write_file_atomic(run.out / "levels.csv", csv.str(), false);
 }
 
-/// A trend across the variants, in their order: every step moves the asserted way by more than the
+/// The variants of a trend check in the order its `variants` list names them (default: file order).
+std::vector<std::size_t> trend_order(const Study& s, const Check& c) {
+  std::vector<std::size_t> order;
+  if (c.only.empty()) {
+    for (std::size_t vi = 0; vi < s.variants.size(); ++vi) order.push_back(vi);
+    return order;
+  }
+  for (const std::string& label : c.only)
+    for (std::size_t vi = 0; vi < s.variants.size(); ++vi)
+      if (s.variants[vi].label == label) order.push_back(vi);
+  return order;
+}
+
+/// A trend across the variants, in the order the check lists them: every step moves the asserted way by more than the
 /// tolerance. The error column holds the smallest step (negative: a wrong step).
 void trend_check(StudyRun& run, const Check& c) {
   const Study& s = run.s;
@@ -113,9 +126,8 @@ void trend_check(StudyRun& run, const Check& c) {
   std::optional<double> smallest, last, last_ref;
   bool complete = true;
   std::optional<double> prev_value, prev_dist;
-  for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
+  for (const std::size_t vi : trend_order(s, c)) {
     const Variant& v = s.variants[vi];
-    if (!applies(c, v)) continue;
     if (!run.finest_runs[vi].probes.count(c.probe)) fail(s, "check.probe", fmt::format("the case has no probe \"{}\"", c.probe));
     const std::optional<double> x = run.finest_runs[vi].probes.at(c.probe);
     shown.push_back(s.ensemble ? fmt::format("{}: {}", v.label, stat_words(run.ensemble_stats[vi].at(c.probe), s.ensemble->confidence))

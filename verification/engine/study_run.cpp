@@ -36,7 +36,7 @@ std::vector<RunOut> StudyRun::run_many(const std::vector<Planned>& plan, int job
         if (const auto cached = read_cached(entry)) {
           ++reused;
           note_reused(*cached, run_cost(c));
-          outs[k] = {cached->probes, cached->status, cached->message, cached->eps};
+          outs[k] = {cached->probes, cached->status, cached->message, cached->eps, cached->seconds_per_step};
           continue;
         }
     }
@@ -50,10 +50,12 @@ std::vector<RunOut> StudyRun::run_many(const std::vector<Planned>& plan, int job
     const std::size_t k = slot[i];
     const bool finished = r.status != "interrupted" && r.status != "case-error" && r.status != "error";
     if (finished && !entries[i].empty()) {  // at once: a killed study keeps every finished run
-      write_cached(entries[i], {r.status, r.message, r.eps, r.probes}, case_paths[i], plan[k].sets);
+      CachedRun entry{r.status, r.message, r.eps, r.probes};
+      entry.seconds_per_step = r.seconds_per_step;
+      write_cached(entries[i], entry, case_paths[i], plan[k].sets);
       ++ran;
     }
-    outs[k] = {std::move(r.probes), r.status, r.message, r.eps};
+    outs[k] = {std::move(r.probes), r.status, r.message, r.eps, r.seconds_per_step};
   });
   for (const RunOut& r : outs) {  // the first failure in plan order, whatever finished first
     if (r.status == "interrupted") throw StudyInterrupted(fmt::format("study {}: {}", s.name, r.message));
@@ -152,6 +154,7 @@ std::string fmt_value(std::optional<double> v) { return v ? fmt::format("{:.6g}"
 
 std::optional<double> probe_of(const RunOut& r, const std::string& probe) {
   if (probe == "element_steps_per_second") return r.eps > 0.0 ? std::optional<double>(r.eps) : std::nullopt;
+  if (probe == "seconds_per_step") return r.seconds_per_step > 0.0 ? std::optional<double>(r.seconds_per_step) : std::nullopt;
   return r.probes.count(probe) ? r.probes.at(probe) : std::nullopt;
 }
 

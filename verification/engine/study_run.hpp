@@ -25,6 +25,7 @@ struct RunOut {
   std::map<std::string, std::optional<double>> probes;
   std::string status, message;
   double eps = 0.0;
+  double seconds_per_step = 0.0;  // wall clock per step (the cost of Fig. 10(c)); 0: unknown
 };
 
 /// A run to do: the overrides of the base case and its run folder (empty: no files).

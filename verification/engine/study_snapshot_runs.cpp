@@ -188,7 +188,7 @@ nlohmann::json take_snapshots(StudyRun& run) {
       const CachedRun cached = *read_cached(entry);
       ++run.reused;
       run.note_reused(cached, 0.0);
-      outs[k] = {cached.probes, cached.status, cached.message, cached.eps};
+      outs[k] = {cached.probes, cached.status, cached.message, cached.eps, cached.seconds_per_step};
       continue;
     }
     std::error_code ec;

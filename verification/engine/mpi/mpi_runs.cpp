@@ -189,7 +189,7 @@ struct Distributor::State {
         remote.erase(node);
         --busy[static_cast<std::size_t>(msg->first.MPI_SOURCE)];
         RunReply r{j.at("status").get<std::string>(), j.at("message").get<std::string>(), j.at("eps").get<double>(),
-                   probes_of(j.at("probes"))};
+                   probes_of(j.at("probes")), j.value("seconds_per_step", 0.0)};
         try {  // the run folder, as the run would have written it here
           if (!it.req().out.empty() && j.contains("files")) {
             fs::remove_all(it.req().out);
@@ -285,6 +285,7 @@ int serve(int jobs) {
           reply["status"] = out.status;
           reply["message"] = out.message;
           reply["eps"] = out.eps;
+          reply["seconds_per_step"] = out.seconds_per_step;
           reply["probes"] = probes_json(out.probes);
           if (!dir.empty() && fs::exists(dir)) {
             json files = json::array();
