@@ -125,6 +125,16 @@ TEST_CASE("A restart from a checkpoint continues bit for bit like the uninterrup
   REQUIRE(ra_rows.size() == n_rows + rc_rows.size());
   for (std::size_t k = 0; k <= n_rows; ++k) CHECK(rb_rows[k] == ra_rows[k]);
   for (std::size_t k = 0; k < rc_rows.size(); ++k) CHECK(rc_rows[k] == ra_rows[n_rows + k]);
+  // The bond-break log: B's breaks up to N, then C's, are A's, row for row (the restart's log holds
+  // the breaks after its checkpoint, as its series holds the rows after it).
+  if (c.output.bond_breaks) {
+    const auto ba = rows(a / "bond_breaks.csv"), bb = rows(b / "bond_breaks.csv"), bc = rows(cdir / "bond_breaks.csv");
+    REQUIRE(!bb.empty());  // at least one break before the checkpoint (rows() skips the header)
+    REQUIRE(!bc.empty());  // and at least one after it
+    REQUIRE(ba.size() == bb.size() + bc.size());
+    for (std::size_t k = 0; k < bb.size(); ++k) CHECK(bb[k] == ba[k]);
+    for (std::size_t k = 0; k < bc.size(); ++k) CHECK(bc[k] == ba[bb.size() + k]);
+  }
   // Snapshots (disks): the final snapshot is the same file.
   if (c.output.vtk) {
     const std::string last = fmt::format("vtk/snapshot_{:09d}.vtp", ra.steps);
