@@ -267,3 +267,40 @@ TEST_CASE("y_relative_to names a variant of the study and needs a probe figure",
   std::ofstream(g, std::ios::app) << "\n[[figure]]\ny = \"t\"\ny_relative_to = \"K18\"\n";
   CHECK_THROWS_WITH(ver::run_study(g, quiet(out)), Contains("figure.y_relative_to") && Contains("needs a probe figure"));
 }
+
+TEST_CASE("A check against another variant takes that variant's value of the probe as its reference", "[study]") {
+  const fs::path f = trend_study("against_variant", "increasing", "-1e-9");
+  std::ofstream(f, std::ios::app) << "\n[[check]]\nprobe = \"overlap\"\nlabel = \"K19 as K18\"\nagainst_variant = \"K18\"\n"
+                                     "variants = [\"K19\"]\nerror = \"rel\"\ntolerance = 1e-9\nreason = \"test\"\n"
+                                     "\n[[check]]\nprobe = \"overlap\"\nlabel = \"K19 above K18\"\nagainst_variant = \"K18\"\n"
+                                     "variants = [\"K19\"]\nexpect = \"above\"\ntolerance = 0.0\nreason = \"test\"\n";
+  const auto r = ver::run_study(f, quiet(fresh_dir("against_variant_out")));
+  const nlohmann::json* same = nullptr;
+  const nlohmann::json* above = nullptr;
+  for (const auto& c : r.json["checks"]) {
+    const std::string q = c["quantity"].get<std::string>();
+    if (q.rfind("K19 as K18", 0) == 0) same = &c;
+    if (q.rfind("K19 above K18", 0) == 0) above = &c;
+  }
+  REQUIRE(same);
+  REQUIRE(above);
+  // K18 and K19 settle to the same overlap (−mg/K) up to round-off: within 1e-9, and not above it.
+  CHECK((*same)["passed"].get<bool>());
+  CHECK((*same)["reference"].get<double>() == Approx(-9.80665e-6).epsilon(1e-9));
+  CHECK_FALSE((*above)["passed"].get<bool>());
+}
+
+TEST_CASE("against_variant is refused without a known variant or when it would compare a variant with itself", "[study]") {
+  const fs::path out = fresh_dir("against_bad_out");
+  auto bad = [&](const std::string& folder, const std::string& body) {
+    const fs::path f = trend_study(folder, "increasing", "-1e-9");
+    std::ofstream(f, std::ios::app) << "\n[[check]]\nprobe = \"overlap\"\n" << body << "tolerance = 0.0\nreason = \"test\"\n";
+    return f;
+  };
+  CHECK_THROWS_WITH(ver::run_study(bad("against_unknown", "against_variant = \"K20\"\nvariants = [\"K19\"]\n"), quiet(out)),
+                    Contains("check.against_variant") && Contains("no variant \"K20\""));
+  CHECK_THROWS_WITH(ver::run_study(bad("against_self", "against_variant = \"K18\"\n"), quiet(out)),
+                    Contains("check.against_variant") && Contains("cannot fail"));
+  CHECK_THROWS_WITH(ver::run_study(bad("against_value", "against_variant = \"K18\"\nvalue = 1.0\nvariants = [\"K19\"]\n"), quiet(out)),
+                    Contains("check.against_variant") && Contains("one of them"));
+}

@@ -178,7 +178,16 @@ Check read_check(const Study& s, const TableReader& r, const toml::node& n) {
             : trend == "toward_reference" ? Trend::toward_reference : Trend::none;
   if (c.trend != Trend::none && s.kind != Kind::single && s.kind != Kind::refinement)
     r.fail("trend", "a trend check needs kind = \"single\" or \"refinement\"");
-  if (c.solver.empty() && !c.value && s.kind != Kind::refinement && (c.trend == Trend::none || c.trend == Trend::toward_reference))
+  c.against_variant = r.string("against_variant", "");
+  if (!c.against_variant.empty()) {
+    if (s.kind != Kind::single) r.fail("against_variant", "needs kind = \"single\"");
+    if (!c.solver.empty() || c.value || c.trend != Trend::none)
+      r.fail("against_variant", "give a reference solver, a value, a trend or against_variant: one of them");
+    const bool known = std::any_of(s.variants.begin(), s.variants.end(), [&](const Variant& v) { return v.label == c.against_variant; });
+    if (!known) r.fail("against_variant", fmt::format("no variant \"{}\" in the study", c.against_variant));
+  }
+  if (c.solver.empty() && !c.value && c.against_variant.empty() && s.kind != Kind::refinement &&
+      (c.trend == Trend::none || c.trend == Trend::toward_reference))
     r.fail_at(n, "reference", fmt::format("check \"{}\": give a reference solver or a value", c.label));
   c.args = r.quantity_table("args");
   c.offset = r.optional_any_quantity("reference_offset").value_or(dem::Quantity{0.0, dem::dims::dimensionless}).value;
@@ -210,6 +219,10 @@ Check read_check(const Study& s, const TableReader& r, const toml::node& n) {
     if (s.kind != Kind::refinement) r.fail("fit_levels", "needs kind = \"refinement\"");
   }
   c.only = r.strings("variants");
+  if (!c.against_variant.empty() &&
+      (c.only.empty() || std::find(c.only.begin(), c.only.end(), c.against_variant) != c.only.end()))
+    r.fail("against_variant", fmt::format("the check's variants must not include \"{}\" (a variant against itself "
+                                          "cannot fail): list the variants it compares", c.against_variant));
   const std::string ex = r.choice("expect", {"within", "above", "below"}, "within");
   c.expect = ex == "above" ? Expect::above : ex == "below" ? Expect::below : Expect::within;
   if (c.expect != Expect::within && c.trend != Trend::none) r.fail("expect", "a trend check asserts its own direction: remove expect");

@@ -52,6 +52,9 @@ struct Check {
   bool compare_each = false;        // refinement: every level against its own reference (level args), no order
   std::optional<double> assumed_order;  // refinement: Richardson/GCI with this order, not the observed one
   std::uint32_t line = 0;           // of the [[check]] in the study file
+  // kind = single: the reference is this other variant's value of the same probe (a comparison of two
+  // model choices, e.g. a slower loading; not an independent reference, so the reason must say why).
+  std::string against_variant;
 };
 
 /// A figure from the time series of runs (the finest level of each listed variant), with an

@@ -81,6 +81,11 @@ RunOut StudyRun::run_one(const std::vector<std::string>& sets, const fs::path& r
 std::optional<double> StudyRun::reference_of(const Check& c, const Variant& v, double param,
                                              const RefinementLevel* level) const {
   if (c.value) return c.value;
+  if (!c.against_variant.empty()) {  // kind = single: the other variant's value of the same probe
+    for (std::size_t vi = 0; vi < s.variants.size() && vi < finest_runs.size(); ++vi)
+      if (s.variants[vi].label == c.against_variant) return probe_of(finest_runs[vi], c.probe);
+    return std::nullopt;
+  }
   if (c.solver.empty()) return std::nullopt;
   std::map<std::string, double> args = v.args;
   if (level)
