@@ -16,7 +16,7 @@ import threading
 
 from . import _core
 
-__all__ = ["CaseError", "OutputError", "Case", "Result", "load_case", "run", "study", "sweep", "version"]
+__all__ = ["CaseError", "OutputError", "Case", "Result", "load_case", "run", "study", "sweep", "schema", "version"]
 
 OutputError = _core.OutputError
 
@@ -177,6 +177,13 @@ def study(path, out=None, jobs=1, fresh=False):
 def sweep(path, out=None, jobs=1, fresh=False):
     """Runs a sensitivity study (sensitivity.toml) as `dem2d sweep` does; returns its result.json as a dict."""
     return _study(path, out, jobs, fresh, True)
+
+
+def schema():
+    """The JSON Schema (draft-07) of the case format as a dict: what `dem2d schema` prints, made from the
+    reader's own key table (keys, types, units, allowed words, defaults, descriptions). Validate a case
+    with it: jsonschema.validate(tomllib.load(f), dem2d.schema())."""
+    return json.loads(_core.schema())
 
 
 def version():

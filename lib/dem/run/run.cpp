@@ -141,7 +141,7 @@ LoopState start_loop(Simulation& sim, const std::optional<Checkpoint>& restart, 
 bool forces_every_step(const Case& c, bool probes, bool peak_quantity, const RunOptions& opt) {
   bool series_forces = false;
   for (const auto& name : c.output.series) series_forces = series_forces || reads_contact_forces(name);
-  return series_forces || c.output.vtk || c.output.any_pictures() || probes || c.stop.any() || peak_quantity ||
+  return series_forces || c.output.vtk || c.output.contacts || c.output.any_pictures() || probes || c.stop.any() || peak_quantity ||
          opt.checkpoint_every > 0 || opt.checkpoint_at_end;
 }
 
@@ -309,6 +309,7 @@ void RunLoop::steps() {
     const bool last = k + 1 == total_steps;
     if (c.output.every > 0 && sim.steps() % c.output.every == 0 && !last) out.write_row(sim);
     if (c.output.vtk_every > 0 && sim.steps() % c.output.vtk_every == 0 && !last) out.snapshot(sim);
+    if (c.output.contacts_every > 0 && sim.steps() % c.output.contacts_every == 0 && !last) out.contacts(sim);
     if (out.picture_due(sim.steps())) out.picture(sim, false);
     if (sim.steps() % check_every == 0 || last) {
       if (energy_ran_away()) break;
@@ -409,6 +410,7 @@ static RunResult run_opened(const Case& c, const RunOptions& opt, Simulation& si
   const Model& m = std::as_const(sim).model();
   out.write_row(sim);
   out.snapshot(sim);
+  out.contacts(sim);
   out.picture(sim, c.output.pictures);
 
   RunResult res;
