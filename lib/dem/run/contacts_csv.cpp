@@ -1,6 +1,7 @@
 #include "dem/run/contacts_csv.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 
 #include <fmt/format.h>

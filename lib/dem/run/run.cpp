@@ -135,7 +135,7 @@ LoopState start_loop(Simulation& sim, const std::optional<Checkpoint>& restart, 
 }
 
 /// Contact forces (each linear element–element contact's resultant) are kept by every step if anything
-/// the case asks for may read them after any step (a series, picture, snapshot, probe, stop criterion or
+/// the case asks for may read them after any step (a series, picture, snapshot, contacts.csv, probe, stop criterion or
 /// checkpoint); else only by the last step, and by the step that ends the run on a signal
 /// (Simulation::keep_contact_forces: a reader of a step that did not keep them throws).
 bool forces_every_step(const Case& c, bool probes, bool peak_quantity, const RunOptions& opt) {
