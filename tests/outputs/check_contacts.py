@@ -12,6 +12,8 @@ parsers of this file's own (the csv module; the .vtp's XML head and its appended
    (each break an x, from below: xBBB, xxBB, ...) and against the series' e1.links.e0.
 5. Each snapshot's contact lines (cell kind 3): as many as contacts.csv's rows of that step, the same pairs,
    normal_force = fn, shear_force = fs, links = links, bit for bit (both written with 17 digits).
+6. cases/bench/settle_10k.toml for 5000 steps with the elements renumbered in space at every rebuild
+   (numerics.reorder_every = 1): ids, not array indices — every pair with i < j, unit normals — and 5.
 
 Usage: check_contacts.py <dem2d> <source dir> <work dir> [--plant-fn-factor F]. Exit status 1 on any failure.
 """
@@ -53,8 +55,9 @@ def read_contacts(path):
         rows = list(csv.reader(f))
     check(rows[0] == HEADER, f"{path.parent.name}: contacts.csv header {rows[0]}")
     steps = {}
+    short = [r for r in rows[1:] if len(r) != len(HEADER)]
+    check(not short, f"{path.parent.name}: {len(HEADER)} cells in every row {short[:1]}")
     for r in rows[1:]:
-        check(len(r) == len(HEADER), f"{path.parent.name}: {len(r)} cells in {r}")
         d = dict(zip(HEADER, r))
         for k in ("step", "i", "j", "links"):
             d[k] = int(d[k])
@@ -182,11 +185,26 @@ def vtk_lines(out):
         lines = [k for k, kind in enumerate(c["kind"]) if kind == 3]
         csv_rows = rows.get(v["step"], [])
         check(len(lines) == len(csv_rows), f"{f.name}: {len(lines)} contact lines, {len(csv_rows)} rows in contacts.csv")
+        differ = []
         for k, row in zip(lines, csv_rows):
             other = row["j"] if row["wall"] == "" else -1
-            same = (c["element_id"][k], c["other_element_id"][k], c["normal_force"][k], c["shear_force"][k],
-                    c["links"][k]) == (row["i"], other, row["fn [N]"], row["fs [N]"], row["links"])
-            check(same, f"{f.name}: line {k} is contact {row['i']}-{row['j']}{row['wall']} with its fn, fs, links")
+            if (c["element_id"][k], c["other_element_id"][k], c["normal_force"][k], c["shear_force"][k],
+                    c["links"][k]) != (row["i"], other, row["fn [N]"], row["fs [N]"], row["links"]):
+                differ.append(f"line {k} vs contact {row['i']}-{row['j']}{row['wall']}")
+        check(not differ, f"{f.name}: each contact line is its row's contact with its fn, fs, links {differ[:3]}")
+
+
+def renumbered(dem2d, src, work):
+    out = work / "settle_reordered"
+    run(dem2d, src / "cases/bench/settle_10k.toml", out, "numerics.duration=0.02", "output.contacts=true",
+        "numerics.reorder_every=1", "output.vtk=true")
+    rows = read_contacts(out / "contacts.csv")
+    last = rows[max(rows)]
+    pairs = [c for c in last if c["wall"] == ""]
+    check(max(rows) == 5000 and len(pairs) > 10000, f"settle: {len(last)} contacts at step {max(rows)}, {len(pairs)} pairs")
+    check(all(c["i"] < c["j"] for c in pairs), "settle: every pair written as ids with i < j")
+    check(max(abs(math.hypot(c["nx"], c["ny"]) - 1) for c in last) < 1e-15, "settle: unit normals")
+    return out
 
 
 def main():
@@ -197,6 +215,7 @@ def main():
     vtk_lines(work / "stack_1_3")
     vtk_lines(pre_stack(dem2d, src, work))
     breaking_face(dem2d, src, work)
+    vtk_lines(renumbered(dem2d, src, work))
     print(f"{len(failures)} failure(s)")
     sys.exit(1 if failures else 0)
 
