@@ -13,6 +13,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "dem/cases/case_file.hpp"
+#include "dem/cases/case_schema.hpp"
 #include "dem/run/case_in_words.hpp"
 #include "dem/run/interrupt.hpp"
 #include "dem/run/output_files.hpp"
@@ -129,4 +130,5 @@ PYBIND11_MODULE(_core, m) {
   m.def("study", &study, py::arg("file"), py::arg("out"), py::arg("jobs"), py::arg("fresh"), py::arg("sweep"),
         py::arg("handle_sigint"));
   m.def("version", [] { return dem::provenance().dump(); });
+  m.def("schema", [] { return dem::case_schema().dump(2); });  // the text `dem2d schema` prints (without its newline)
 }

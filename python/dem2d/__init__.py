@@ -16,7 +16,7 @@ import threading
 
 from . import _core
 
-__all__ = ["CaseError", "OutputError", "Case", "Result", "load_case", "run", "study", "sweep", "version"]
+__all__ = ["CaseError", "OutputError", "Case", "Result", "load_case", "run", "study", "sweep", "schema", "version"]
 
 OutputError = _core.OutputError
 
@@ -115,16 +115,32 @@ def _read_series(csv_path):
         return {name: numpy.array([float(r[k]) for r in rows[1:]]) for k, name in enumerate(rows[0])}
 
 
+def _read_contacts(csv_path):
+    """contacts.csv ([output] contacts = true) as a DataFrame, an empty `wall` or `segments` kept as "" (not
+    NaN), numbers bit for bit; a dict of columns (lists of strings) without pandas; None if not written."""
+    if not os.path.exists(csv_path):
+        return None
+    try:
+        import pandas
+        return pandas.read_csv(csv_path, float_precision="round_trip", keep_default_na=False)
+    except ImportError:
+        import csv
+        with open(csv_path, newline="") as f:
+            rows = list(csv.reader(f))
+        return {name: [r[k] for r in rows[1:]] for k, name in enumerate(rows[0])}
+
+
 class Result:
     """A finished run: status ("completed", "settled", "past peak", "blow-up", "interrupted"), message,
     steps, time [s], wall_seconds, probes {name: value in SI or None}, summary (summary.json as a dict),
-    series (series.csv: a pandas DataFrame, SI units in the column names), out (the output folder or None)."""
+    series (series.csv: a pandas DataFrame, SI units in the column names), contacts (contacts.csv, when the
+    case asks for it with [output] contacts = true, else None), out (the output folder or None)."""
 
-    def __init__(self, d, series, out):
+    def __init__(self, d, series, out, contacts=None):
         self.status, self.message, self.steps, self.time = d["status"], d["message"], d["steps"], d["time"]
         self.wall_seconds, self.stability_limit = d["wall_seconds"], d["stability_limit"]
         self.probes, self.summary = dict(d["probes"]), json.loads(d["summary"])
-        self.series, self.out = series, out
+        self.series, self.out, self.contacts = series, out, contacts
 
     def __repr__(self):
         return f"<dem2d.Result {self.status}: {self.steps} steps, t = {self.time:g} s, {len(self.probes)} probes>"
@@ -148,7 +164,8 @@ def _run_into(case, out, threads, keep):
         d = _core.run(case._core, out, int(threads), _in_main_thread())
     except _core.CaseError as e:
         _reraise(e, case._sets)
-    return Result(d, _read_series(os.path.join(out, "series.csv")), out if keep else None)
+    return Result(d, _read_series(os.path.join(out, "series.csv")), out if keep else None,
+                  _read_contacts(os.path.join(out, "contacts.csv")))
 
 
 def _study(path, out, jobs, fresh, sweep):
@@ -177,6 +194,13 @@ def study(path, out=None, jobs=1, fresh=False):
 def sweep(path, out=None, jobs=1, fresh=False):
     """Runs a sensitivity study (sensitivity.toml) as `dem2d sweep` does; returns its result.json as a dict."""
     return _study(path, out, jobs, fresh, True)
+
+
+def schema():
+    """The JSON Schema (draft-07) of the case format as a dict: what `dem2d schema` prints, made from the
+    reader's own key table (keys, types, units, allowed words, defaults, descriptions). Validate a case
+    with it: jsonschema.validate(tomllib.load(f), dem2d.schema())."""
+    return json.loads(_core.schema())
 
 
 def version():

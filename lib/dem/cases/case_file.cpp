@@ -826,6 +826,9 @@ void Reader::read_output(const TableReader& top) {
     c.output.vtk_every = steps_or_time(r, "vtk_every", m.numerics.dt);
     OutputSpec& o = c.output;
     o.lammps_dump = r.boolean("lammps_dump", false);
+    o.contacts = r.boolean("contacts", false);
+    o.contacts_every = steps_or_time(r, "contacts_every", m.numerics.dt);
+    if (o.contacts_every > 0 && !o.contacts) r.fail("contacts_every", "contacts.csv is written only with contacts = true");
     o.pictures = r.boolean("pictures", false);
     o.picture_every = r.node("picture_every") && r.node("picture_every")->is_integer()
                           ? static_cast<double>(r.integer("picture_every", 0, std::int64_t{1} << 40, 0)) * m.numerics.dt

@@ -66,6 +66,10 @@ struct OutputSpec {
   bool bond_breaks = false;
   // dump.lammpstrj: the elements in LAMMPS' `dump custom` format at each series row (run/lammps_dump.hpp)
   bool lammps_dump = false;
+  // contacts.csv: every contact (ids, point, normal, fn, fs, PRE segment links) at the first and the last
+  // step and every `contacts_every` steps (0: first and last only) (run/contacts_csv.hpp)
+  bool contacts = false;
+  std::int64_t contacts_every = 0;
 };
 
 /// When a run counts as settled (run.cpp): every criterion given must hold at every step of a window

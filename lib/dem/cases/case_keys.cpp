@@ -246,6 +246,8 @@ std::vector<TableSpec> run_tables() {
           flag("vtk", "write VTK snapshots", true),
           base("vtk_every", SpecKind::interval, "snapshot interval: steps or a time; 0: first and last only"),
           flag("lammps_dump", "write dump.lammpstrj (LAMMPS dump custom) at each series row", false),
+          flag("contacts", "write contacts.csv: every contact at the first and last step (and every contacts_every)", false),
+          base("contacts_every", SpecKind::interval, "contacts.csv interval: steps or a time; 0: first and last only"),
           flag("pictures", "force-network pictures at the first and last step", false),
           base("picture_every", SpecKind::interval, "a picture every this many steps or this time; 0: none"),
           many("picture_times", SpecKind::quantities, d::time, "pictures at these times (increasing)"),

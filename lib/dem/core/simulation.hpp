@@ -2,6 +2,7 @@
 // The explicit DEM cycle of Kiyama & Fujimura (docs/model.md §1, docs/references.md §1.4), for disks and
 // pseudo-rectangle elements: contact forces from the increments of the step (K5–K15, M3–M12),
 // velocities (K17), next increments (K18 or K19), positions.
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -124,6 +125,15 @@ class Simulation {
     double normal = 0.0, tangential = 0.0;
   };
   std::vector<WallContactForce> wall_contact_forces(std::uint32_t w) const;
+
+  /// The segments of the touching face contact between elements i and j (or element i and wall j), as
+  /// array indices (face_segments.cpp): their number N and each one's state in the order of ξ_i (M13),
+  /// along t = n turned by +90°, n from i towards j; n = 0 if there is no such face contact.
+  struct FaceSegments {
+    int n = 0;
+    std::array<SegmentState, kMaxSegments> seg{};
+  };
+  FaceSegments face_segments(std::uint32_t i, std::uint32_t j, bool wall) const;
 
   /// The bonded (intact) links of the PRE faces that broke in tension (M8) since the last call, in slot
   /// order (element pairs, then element–wall faces), and the marks cleared (bond_breaks.cpp). `point`

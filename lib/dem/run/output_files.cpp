@@ -100,7 +100,7 @@ bool is_run_output(const std::string& name) {
       base.resize(dot);
   return base == "series.csv" || base == "summary.json" || base == "snapshots.pvd" || base == "vtk" || base == "pictures" ||
          base == "checkpoint.bin" || base == "wall_contacts.csv" || base == "bond_breaks.csv" ||
-         base == "dump.lammpstrj";
+         base == "dump.lammpstrj" || base == "contacts.csv";
 }
 
 void prepare_run_folder(const fs::path& dir) {

@@ -184,6 +184,7 @@ nlohmann::json resolved_case_si(const Case& c) {
                                                                   : nlohmann::json(nullptr)}};
   if (!c.output.wall_contacts.empty()) j["output"]["wall_contacts"] = c.output.wall_contacts;
   if (c.output.bond_breaks) j["output"]["bond_breaks"] = true;
+  if (c.output.contacts) j["output"]["contacts"] = true, j["output"]["contacts_every"] = c.output.contacts_every;
   const StopSpec& st = c.stop;
   nlohmann::json stop = {{"settle_window", st.settle_window}, {"settle_min_time", st.settle_min_time}};
   stop["settled_increment"] = st.settled_increment ? nlohmann::json(*st.settled_increment) : nlohmann::json(nullptr);

@@ -135,13 +135,13 @@ LoopState start_loop(Simulation& sim, const std::optional<Checkpoint>& restart, 
 }
 
 /// Contact forces (each linear element–element contact's resultant) are kept by every step if anything
-/// the case asks for may read them after any step (a series, picture, snapshot, probe, stop criterion or
+/// the case asks for may read them after any step (a series, picture, snapshot, contacts.csv, probe, stop criterion or
 /// checkpoint); else only by the last step, and by the step that ends the run on a signal
 /// (Simulation::keep_contact_forces: a reader of a step that did not keep them throws).
 bool forces_every_step(const Case& c, bool probes, bool peak_quantity, const RunOptions& opt) {
   bool series_forces = false;
   for (const auto& name : c.output.series) series_forces = series_forces || reads_contact_forces(name);
-  return series_forces || c.output.vtk || c.output.any_pictures() || probes || c.stop.any() || peak_quantity ||
+  return series_forces || c.output.vtk || c.output.contacts || c.output.any_pictures() || probes || c.stop.any() || peak_quantity ||
          opt.checkpoint_every > 0 || opt.checkpoint_at_end;
 }
 
@@ -309,6 +309,7 @@ void RunLoop::steps() {
     const bool last = k + 1 == total_steps;
     if (c.output.every > 0 && sim.steps() % c.output.every == 0 && !last) out.write_row(sim);
     if (c.output.vtk_every > 0 && sim.steps() % c.output.vtk_every == 0 && !last) out.snapshot(sim);
+    if (c.output.contacts_every > 0 && sim.steps() % c.output.contacts_every == 0 && !last) out.contacts(sim);
     if (out.picture_due(sim.steps())) out.picture(sim, false);
     if (sim.steps() % check_every == 0 || last) {
       if (energy_ran_away()) break;
@@ -409,6 +410,7 @@ static RunResult run_opened(const Case& c, const RunOptions& opt, Simulation& si
   const Model& m = std::as_const(sim).model();
   out.write_row(sim);
   out.snapshot(sim);
+  out.contacts(sim);
   out.picture(sim, c.output.pictures);
 
   RunResult res;

@@ -7,6 +7,7 @@
 
 #include "dem/cases/text.hpp"
 #include "dem/run/checkpoint.hpp"
+#include "dem/run/contacts_csv.hpp"
 #include "dem/run/lammps_dump.hpp"
 #include "dem/run/vtk_writer.hpp"
 #include "dem/run/wall_contacts_csv.hpp"
@@ -37,6 +38,10 @@ void RunOutputs::open(const Simulation& sim, std::int64_t total_steps) {
       csv_.write(head + "\n");
     }
     if (o.lammps_dump) dump_.open(opt_.out_dir / "dump.lammpstrj");
+    if (o.contacts) {
+      contacts_.open(opt_.out_dir / "contacts.csv");
+      contacts_.write(contacts_csv_header());
+    }
     if (o.vtk) std::filesystem::create_directories(opt_.out_dir / "vtk");
     if (o.any_pictures()) std::filesystem::create_directories(opt_.out_dir / "pictures");
   }
@@ -100,6 +105,12 @@ void RunOutputs::snapshot(const Simulation& sim) {
   snapshots_.emplace_back(sim.time(), "vtk/" + name);
 }
 
+void RunOutputs::contacts(const Simulation& sim) {
+  if (!contacts_.is_open() || contacts_step_ == sim.steps()) return;
+  contacts_step_ = sim.steps();
+  contacts_.write(contacts_csv_rows(sim));
+}
+
 void RunOutputs::picture(const Simulation& sim, bool wanted) {
   while (next_picture_ < picture_steps_.size() && picture_steps_[next_picture_] <= sim.steps()) {
     wanted = wanted || picture_steps_[next_picture_] == sim.steps();
@@ -126,6 +137,7 @@ void RunOutputs::bond_breaks(const Simulation& sim, const std::vector<Simulation
 void RunOutputs::finish(const Simulation& sim, bool interrupted) {
   if (!(interrupted && row_step_ == sim.steps())) write_row(sim);
   if (!(interrupted && snapshot_step_ == sim.steps())) snapshot(sim);
+  contacts(sim);  // once per step (contacts_step_)
   picture(sim, c_.output.pictures);
 }
 
@@ -141,6 +153,7 @@ void RunOutputs::commit(const Simulation& sim, nlohmann::json& summary, bool che
   if (checkpoint_step_) summary["checkpoint"] = {{"file", "checkpoint.bin"}, {"step", *checkpoint_step_}};
   csv_.commit();
   if (dump_.is_open()) dump_.commit();
+  if (contacts_.is_open()) contacts_.commit();
   if (c_.output.vtk) write_pvd(opt_.out_dir / "snapshots.pvd", snapshots_);
   if (!c_.output.wall_contacts.empty()) write_file_atomic(opt_.out_dir / "wall_contacts.csv", wall_contacts_csv(sim, c_.output));
   if (c_.output.bond_breaks)

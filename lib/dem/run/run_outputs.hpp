@@ -32,6 +32,7 @@ class RunOutputs {
 
   void write_row(const Simulation& sim);   // one series row (when the case has a series) and dump frame
   void snapshot(const Simulation& sim);    // one VTK snapshot (when the case asks for them)
+  void contacts(const Simulation& sim);    // the rows of contacts.csv of this step (output.contacts)
   /// A picture if `wanted` or one of the chosen steps is this one (chosen steps passed are dropped).
   void picture(const Simulation& sim, bool wanted);
   bool picture_due(std::int64_t step) const {
@@ -59,7 +60,8 @@ class RunOutputs {
   StreamedFile csv_;
   StreamedFile dump_;  // dump.lammpstrj (lammps_dump.hpp), a frame with each series row
   std::string row_;
-  std::int64_t row_step_ = -1, snapshot_step_ = -1;  // the step of the last row / snapshot written
+  StreamedFile contacts_;  // contacts.csv (contacts_csv.hpp), the contacts at the chosen steps
+  std::int64_t row_step_ = -1, snapshot_step_ = -1, contacts_step_ = -1;  // the step of the last row / snapshot written
   std::vector<std::pair<double, std::string>> snapshots_;
   std::optional<std::int64_t> checkpoint_step_;
   std::vector<std::int64_t> picture_steps_;

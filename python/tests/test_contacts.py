@@ -1,0 +1,27 @@
+"""Result.contacts: contacts.csv ([output] contacts = true) as a DataFrame, the file's numbers bit for bit and
+the same as the command line's file; None when the case does not ask for it."""
+import subprocess
+
+import pandas
+
+import dem2d
+
+
+def test_contacts_of_a_disk_on_a_floor(root, exe, scratch):
+    case_file = root / "cases/basic/rest_on_wall.toml"
+    r = dem2d.run(dem2d.load_case(case_file, sets={"output.contacts": True, "element.0.mass": "2 kg"}))
+    c = r.contacts
+    assert isinstance(c, pandas.DataFrame) and r.out is None  # read before the temporary folder went
+    last = c[c["step"] == r.steps]
+    assert len(last) == 1
+    row = last.iloc[0]
+    assert (row["i"], row["j"], row["wall"], row["law"], row["links"], row["segments"]) == (0, -1, "floor", "linear", 1, "")
+    assert abs(row["fn [N]"] / (2 * 9.80665) - 1) < 1e-12 and (row["nx"], row["ny"]) == (0.0, -1.0)
+    subprocess.run([exe, "run", str(case_file), "--out", str(scratch / "cli"), "-q", "--set", "output.contacts=true",
+                    "--set", "element.0.mass=2 kg"], check=True)
+    from_file = pandas.read_csv(scratch / "cli" / "contacts.csv", float_precision="round_trip", keep_default_na=False)
+    assert from_file.equals(c)
+
+
+def test_no_contacts_unless_asked(root):
+    assert dem2d.run(dem2d.load_case(root / "cases/impact/disk_disk.toml")).contacts is None
