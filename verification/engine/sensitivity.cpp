@@ -547,6 +547,7 @@ std::string with_names(const Sens& s, const std::string& csv) {
   for (const auto& p : s.params) name["\"" + p.label + "\""] = p.name;
   name["\"dummy\""] = "dummy";  // the Sobol' noise floor (sensitivity_sobol.cpp)
   name["\"run-to-run noise\""] = "noise";  // the replicates' noise split (sensitivity_noise.cpp)
+  name["\"ranking\""] = "ranking";  // the ranking's stability against N (sensitivity_sobol_subsets.cpp)
   for (const auto& p : s.params)
     for (const auto& q : s.params) name["\"" + p.label + ":" + q.label + "\""] = p.name + ":" + q.name;
   std::istringstream in(csv);

@@ -165,6 +165,8 @@ void analyse_transform(const Plan& plan, const ExactIndices& exact, Transform tr
     dummy_row(y, nz ? &*nz : nullptr, yname, tsuffix, rows, an);
     an.figures.push_back(index_figure(s, si, exact_sobol, yname, transform, o));
     if (s.second_order) second_order_rows(y, exact_sobol, yname, tsuffix, rows2, an);
+    if (!s.function)
+      sobol_subsets(y, nz, yname, transform == Transform::none ? std::to_string(o) : fmt::format("{}_{}", transform_name(transform), o), an);
   }
   const bool corrected = !s.replicates.empty() && transform == Transform::none;
   an.tables.push_back({{"title", fmt::format("Sobol' indices (Saltelli sampling, N = {}, {} runs; {} % bootstrap intervals){}{}", n, n * (d + 2),

@@ -178,6 +178,11 @@ void analyse_sobol(const Plan& plan, const ExactIndices& exact, Analysis& an);
 void analyse_delta(const Plan& plan, Analysis& an);  // sensitivity_sobol_delta.cpp
 
 struct DesignOutputs;
+/// Convergence against sample size for a study of a case (sensitivity_sobol_subsets.cpp): the indices on
+/// the nested first N/8, N/4, N/2, N rows, a table, a figure and the ranking's stability.
+/// yname: the (transformed) output's label; id: what makes the figure's id unique.
+void sobol_subsets(const DesignOutputs& y, const std::optional<MeanNoise>& nz, const std::string& yname, const std::string& id, Analysis& an);
+
 /// Second-order indices of one output (sensitivity_sobol_second.cpp): table rows, indices.csv rows
 /// ("i:j", S2) and, for test functions, the checks against the exact S_ij.
 void second_order_rows(const DesignOutputs& y, const ExactIndices& exact, const std::string& yname, const std::string& tsuffix,
