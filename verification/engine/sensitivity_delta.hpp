@@ -19,6 +19,14 @@ namespace ver::sens {
 
 /// δ_i with its interval for each input; x[i][j]: input i at point j (any monotone scale: ranks only),
 /// y[j]: the output (points with a non-finite y are dropped).
+/// The same δ_i by histograms instead of kernels (this project's, findings F15): the same M classes by
+/// rank; f_Y and each class's distribution as frequencies in K = 2⌈√(N/M)⌉ equal cells of [min y, max y];
+/// δ̂_i = Σ_classes (n_c / 2N) Σ_cells |p_c − p|, the total variation of the two CDFs on the cells (no
+/// smoothing of sharp features; the frequencies' noise biases it up, the cells down); bias reduction and
+/// interval as above. Ishigami: within 0.03 of the quadrature δ at 8192 points.
+std::vector<Interval> histogram_delta(const std::vector<std::vector<double>>& x, const std::vector<double>& y, std::size_t resamples = 100,
+                                      double confidence = 0.95, std::uint64_t seed = 12345);
+
 std::vector<Interval> borgonovo_delta(const std::vector<std::vector<double>>& x, const std::vector<double>& y, std::size_t resamples = 100,
                                       double confidence = 0.95, std::uint64_t seed = 12345);
 
