@@ -123,7 +123,8 @@ void noise_row(const Plan& plan, const ExactIndices& exact, const std::string& m
   const std::size_t resamples = method == "sobol" ? s.resamples : s.morris_resamples;
   const double confidence = method == "sobol" ? s.confidence : s.morris_confidence;
   const NoiseSplit ns = noise_split(means, within, s.replicates.size(), resamples, confidence);
-  const double exact_fraction = s.function && s.noise_sd > 0.0 && std::isfinite(exact.variance)
+  // Exact only over the inputs' distribution (Sobol'): Morris points sit on a grid whose variance differs.
+  const double exact_fraction = method == "sobol" && s.function && s.noise_sd > 0.0 && std::isfinite(exact.variance)
                                     ? s.noise_sd * s.noise_sd / (exact.variance + s.noise_sd * s.noise_sd)
                                     : std::nan("");
   // Morris: the μ* that the noise alone gives, E|ε − ε'| / Δ with ε, ε' ~ N(0, σ²/R): 2σ / (Δ √(π R)).
