@@ -145,14 +145,15 @@ std::string sensitivity_overview_section(const ReportContent& content) {
       "<section id=\"sensitivity-overview\">\n<h2>Sensitivity studies: overview</h2>\n"
       "<p>Per study and output, the most and the least influential parameter by the strongest measure the study "
       "computed: the Sobol' total index S_T with its bootstrap interval, else Morris &mu;*, else the one-at-a-time range "
-      "(max &minus; min). Indices of a transformed output are labelled so (ln(y), rank(y)).</p>\n"
+      "(max &minus; min). Indices of a transformed output are labelled so (ln(y), rank(y)). With replicates, the noise "
+      "fraction of a single run (run-to-run noise over noise + parameter effect) with its bootstrap interval.</p>\n"
       "<table class=\"overview\">\n<thead><tr>";
   for (const auto& c : sensitivity_overview_columns) out += "<th>" + escape(c) + "</th>";
   out += "</tr></thead>\n<tbody>\n";
   for (const auto& r : rows)
     out += fmt::format("<tr><td><a href=\"#{}\">{}</a></td>", r.anchor, escape(r.study)) + cell(r.output) + cell(r.measure) +
            cell(r.most) + num_cell(r.most_value) + num_cell(r.most_interval) + cell(r.least) + num_cell(r.least_value) +
-           num_cell(r.least_interval) + num_cell(r.runs) + num_cell(r.failed) + "</tr>\n";
+           num_cell(r.least_interval) + num_cell(r.runs) + num_cell(r.failed) + num_cell(r.noise) + "</tr>\n";
   return out + "</tbody>\n</table>\n</section>\n";
 }
 

@@ -228,7 +228,7 @@ std::string markdown_page(const ReportContent& content) {
     out += table_head(sensitivity_overview_columns);
     for (const auto& r : rows) {
       auto line = escaped({r.study, r.output, r.measure, r.most, r.most_value, r.most_interval, r.least, r.least_value,
-                           r.least_interval, r.runs, r.failed},
+                           r.least_interval, r.runs, r.failed, r.noise},
                           sensitivity_overview_columns.size());
       line[0] = "[" + escape(r.study) + "](#" + r.anchor + ")";
       out += table_line(line);

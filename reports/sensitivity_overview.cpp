@@ -75,8 +75,12 @@ std::vector<SensitivityOverviewRow> sensitivity_overview_rows(const ReportConten
     // Per output: the entries of the strongest measure (rank 0 Sobol', 1 Morris, 2 one-at-a-time).
     std::vector<std::string> outputs;
     std::map<std::string, std::pair<int, std::vector<Entry>>> by_output;
+    std::map<std::string, std::string> noise;  // output → "fraction [low, high]" (the first row: Sobol' before Morris)
     for (const auto& table : array_field(result, "tables")) {
       const std::string title = text_field(table, "title");
+      if (starts(title, "Run-to-run noise"))
+        for (const auto& row : array_field(table, "rows"))
+          if (row.is_array() && row.size() > 8) noise.try_emplace(text(row[0]), text(row[7]) + " " + text(row[8]));
       int rank = -1;
       std::size_t value_col = 0, interval_col = 0;
       if (starts(title, "Sobol' indices")) rank = 0, value_col = 4, interval_col = 5;
@@ -89,6 +93,7 @@ std::vector<SensitivityOverviewRow> sensitivity_overview_rows(const ReportConten
       for (const auto& row : array_field(table, "rows")) {
         if (!row.is_array() || row.size() <= std::max(value_col, interval_col)) continue;
         const std::string output = text(row[0]);
+        if (rank == 0 && starts(text(row[1]), "dummy (inert")) continue;  // the noise floor, not a parameter
         auto [it, fresh] = by_output.try_emplace(output, rank, std::vector<Entry>{});
         if (fresh) outputs.push_back(output);
         if (rank > it->second.first) continue;
@@ -123,6 +128,8 @@ std::vector<SensitivityOverviewRow> sensitivity_overview_rows(const ReportConten
       r.least_interval = least && !least->interval.empty() ? least->interval : none;
       r.runs = count(setup, "runs");
       r.failed = count(setup, "failed runs");
+      const auto nz = noise.find(output);
+      r.noise = nz != noise.end() ? nz->second : std::string(missing_value);
       out.push_back(r);
     }
   }

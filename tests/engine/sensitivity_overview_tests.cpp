@@ -30,6 +30,7 @@ const char* sobol_study = R"json({
       "rows": [["x_0.2", "K_n", "0.21", "[-5.5, 2.2]", "0.98", "[0.12, 3.4]", "", "", "0.1", "[0, 1]"],
                ["x_0.2", "h_n", "0.28", "[-5.3, 2.8]", "1.16", "[0.37, 4]", "", "", "0.1", "[0, 1]"],
                ["x_0.2", "Δt", "-0.013", "[-0.089, 0.008]", "0.0001", "[4.6e-06, 0.00061]", "", "", "0.1", "[0, 1]"],
+               ["x_0.2", "dummy (inert: noise floor)", "0", "[0, 0]", "0", "[0, 0]", "", "", "0.02", "[-0.03, 0.05]"],
                ["x_0.1", "K_n", "—", "[—, —]", "—", "[—, —]", "", "", "—", "[—, —]"]] },
     { "title": "Sobol' indices (Saltelli sampling, N = 256, 1536 runs; 95 % bootstrap intervals): indices of the TRANSFORMED output rank(y)",
       "columns": ["output", "parameter", "S", "interval", "S_T", "interval"],
@@ -77,6 +78,7 @@ TEST_CASE("sensitivity overview: the strongest measure per output, most and leas
   CHECK(rows[3].most_value == "300");
   CHECK(rows[3].least == "c");
   CHECK(rows[3].most_interval == "[250, 350]");  // μ*'s bootstrap interval
+  CHECK(rows[0].noise == "—");  // no replicates
   CHECK(rows[3].runs == "71");
 }
 
@@ -112,4 +114,20 @@ TEST_CASE("sensitivity overview: a section in both pages linking each study, non
   const auto again = report::write_report(options);
   CHECK(slurp(again.html).find("sensitivity-overview") == std::string::npos);
   fs::remove_all(dir);
+}
+
+TEST_CASE("sensitivity overview: the noise fraction of a study with replicates", "[report]") {
+  report::ReportContent content;
+  content.studies.push_back(study("sensitivity_noisy", R"json({
+  "study": "noisy", "title": "Noisy", "kind": "sensitivity", "setup": { "runs": 20, "failed runs": 0 },
+  "tables": [
+    { "title": "Morris elementary effects (unit coordinates)", "columns": ["output", "parameter", "μ*", "95 % bootstrap interval", "μ*_conf (SALib)", "μ", "σ", "effects", "exact μ*"],
+      "rows": [["rate", "φ", "30", "[18, 50]", "5", "-30", "24", "6", ""]] },
+    { "title": "Run-to-run noise against parameter effect (3 replicates per sample)",
+      "columns": ["output", "samples", "n", "R", "σ_noise", "interval", "√V_effect", "noise fraction", "interval", "exact", "noise μ* (Morris)"],
+      "rows": [["rate", "Morris points", "30", "3", "12", "[10, 14]", "20", "0.26", "[0.2, 0.33]", "—", "9"]] }
+  ] })json"));
+  const auto rows = report::sensitivity_overview_rows(content);
+  REQUIRE(rows.size() == 1);
+  CHECK(rows[0].noise == "0.26 [0.2, 0.33]");
 }

@@ -279,3 +279,27 @@ TEST_CASE("Mistakes in a sensitivity file are refused before any run", "[study_f
   CHECK_THAT(sens_refusal(sweep_planted("path = \"contact.0.kn\"", "path = \"contact.0.kn\"\ndistribution = \"loguniform\"")),
              Contains("did you mean \"log-uniform\"?"));
 }
+
+TEST_CASE("The noise and delta keys of a sensitivity file are read strictly", "[study_file]") {
+  // Issue 36: noise_sd / noise_seed and a replicate count belong to a test function; the tolerances
+  // need their reason; delta_tolerance needs delta = true and the Ishigami function.
+  CHECK_THAT(sens_refusal(sweep_planted("methods = [\"sobol\"]", "methods = [\"sobol\"]\nnoise_sd = 0.1")),
+             StartsWith(sweep_line(6) + "sensitivity.noise_sd: only for a test function"));
+  CHECK_THAT(sens_refusal(sweep_planted("samples = 16", "samples = 16\ntolerance = 0.05")),
+             Contains("sobol.tolerance: only for a test function"));
+  CHECK_THAT(sens_refusal(sweep_planted("samples = 16", "samples = 16\ndelta_bootstrap = 10")), Contains("sobol.delta_bootstrap: needs delta = true"));
+  CHECK_THAT(sens_refusal(sweep_planted("samples = 16", "samples = 16\ndelta = true\ndelta_tolerance = 0.05\ndelta_reason = \"x\"")),
+             Contains("sobol.delta_tolerance: only with delta = true for the Ishigami function"));
+  CHECK_THAT(sens_refusal(sweep_planted("samples = 16", "samples = 16\ndelta_reason = \"x\"")), Contains("sobol.delta_reason: belongs to delta_tolerance"));
+  const std::string fn = "[sensitivity]\nfunction = \"ishigami\"\ncoefficients = [7.0, 0.1]\nmethods = [\"sobol\"]\n"  // 1-4
+                         "[[parameter]]\nlow = -3.0\nhigh = 3.0\n[[parameter]]\nlow = -3.0\nhigh = 3.0\n[[parameter]]\nlow = -3.0\nhigh = 3.0\n"
+                         "[sobol]\nsamples = 16\nbootstrap = 20\n";
+  auto planted = [&](const std::string& from, const std::string& to) {
+    std::string s = fn;
+    return s.replace(s.find(from), from.size(), to);
+  };
+  CHECK_THAT(sens_refusal(planted("methods", "replicates = 3\nmethods")), Contains("sensitivity.replicates: a test function has no noise unless noise_sd is given"));
+  CHECK_THAT(sens_refusal(planted("methods", "replicates = 1\nnoise_sd = 1.0\nmethods")), Contains("sensitivity.replicates"));
+  CHECK_THAT(sens_refusal(planted("methods", "noise_sd = -1.0\nmethods")), Contains("sensitivity.noise_sd"));
+  CHECK_THAT(sens_refusal(planted("bootstrap = 20", "bootstrap = 20\ntolerance = 0.05")), Contains("sobol.tolerance_reason: missing"));
+}

@@ -114,12 +114,20 @@ void read_header(Sens& s, const TableReader& top) {
     if (s.function) r.fail("dt_fraction", "only for a case (a test function has no time step)");
   }
   r.mark("replicates");
-  if (const toml::node* rn = r.node("replicates")) {
+  if (s.function && r.has("replicates")) {  // a test function: how many evaluations per sample (each its own noise)
+    const std::size_t count = static_cast<std::size_t>(r.integer("replicates", 2, 1000, 2));
+    s.replicates.assign(count, {});
+    if (!r.has("noise_sd")) r.fail("replicates", "a test function has no noise unless noise_sd is given");
+  } else if (const toml::node* rn = r.node("replicates")) {
     const toml::array* ra = rn->as_array();
     if (!ra || ra->size() < 2)
       r.fail("replicates", "expected at least 2 lists of overrides, e.g. [[\"numerics.dt=5e-5 s\"], [\"numerics.dt=4.9e-5 s\"]]");
-    if (s.function) r.fail("replicates", "only for a case (a test function has no noise)");
     for (const auto& e : *ra) s.replicates.push_back(overrides_of(r, e, "replicates"));
+  }
+  if (r.has("noise_sd") || r.has("noise_seed")) {
+    if (!s.function) r.fail(r.has("noise_sd") ? "noise_sd" : "noise_seed", "only for a test function (a case has its own noise)");
+    s.noise_sd = r.number_in("noise_sd", 0.0, 1e300, 0.0, false);
+    s.noise_seed = static_cast<std::uint64_t>(r.integer("noise_seed", 1, std::numeric_limits<std::int64_t>::max(), 1));
   }
   s.setup = read_setup(r);
   r.finish();
@@ -279,6 +287,28 @@ void read_methods(Sens& s, const TableReader& top) {
       s.second_order_reason = r.string("second_order_reason");
     } else if (r.has("second_order_reason")) {
       r.fail("second_order_reason", "belongs to second_order_tolerance");
+    }
+    s.delta = r.boolean("delta", false);
+    if (r.has("delta_bootstrap")) {
+      if (!s.delta) r.fail("delta_bootstrap", "needs delta = true");
+      s.delta_resamples = static_cast<std::size_t>(r.integer("delta_bootstrap", 1, 100000, 100));
+    }
+    if (r.has("delta_tolerance")) {
+      if (!s.delta || !s.function || s.function->name != "ishigami")
+        r.fail("delta_tolerance", "only with delta = true for the Ishigami function (its reference δ is computed)");
+      s.delta_tolerance = r.number_in("delta_tolerance", 0.0, 1.0, 0.05, false, true);
+      s.delta_reason = r.string("delta_reason");
+      if (s.delta_reason.empty()) r.fail("delta_reason", "missing: one line saying why this tolerance");
+    } else if (r.has("delta_reason")) {
+      r.fail("delta_reason", "belongs to delta_tolerance");
+    }
+    if (r.has("tolerance")) {
+      if (!s.function) r.fail("tolerance", "only for a test function (its exact indices are the reference)");
+      s.index_tolerance = r.number_in("tolerance", 0.0, 1.0, 0.05, false, true);
+      s.index_tolerance_reason = r.string("tolerance_reason");
+      if (s.index_tolerance_reason.empty()) r.fail("tolerance_reason", "missing: one line saying why this tolerance");
+    } else if (r.has("tolerance_reason")) {
+      r.fail("tolerance_reason", "belongs to tolerance");
     }
     r.mark("convergence");
     if (const toml::node* cn = r.node("convergence")) {
@@ -516,6 +546,8 @@ std::string with_names(const Sens& s, const std::string& csv) {
   std::map<std::string, std::string> name;
   for (const auto& p : s.params) name["\"" + p.label + "\""] = p.name;
   name["\"dummy\""] = "dummy";  // the Sobol' noise floor (sensitivity_sobol.cpp)
+  name["\"run-to-run noise\""] = "noise";  // the replicates' noise split (sensitivity_noise.cpp)
+  name["\"ranking\""] = "ranking";  // the ranking's stability against N (sensitivity_sobol_subsets.cpp)
   for (const auto& p : s.params)
     for (const auto& q : s.params) name["\"" + p.label + ":" + q.label + "\""] = p.name + ":" + q.name;
   std::istringstream in(csv);
@@ -544,6 +576,8 @@ StudyResult analyse_and_write(const Sens& s, const sens::Plan& plan, const fs::p
   if (s.oat) sens::analyse_oat(plan, an);
   if (s.morris) sens::analyse_morris(plan, exact, an);
   if (s.sobol) sens::analyse_sobol(plan, exact, an);
+  if (s.sobol && s.delta) sens::analyse_delta(plan, an);
+  sens::analyse_noise(plan, exact, an);
   dem::write_file_atomic(out / "indices.csv", with_names(s, an.idx_csv.str()), false);
   sens::report_runs(run_table, derived_dt, an);
 

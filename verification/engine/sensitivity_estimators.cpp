@@ -15,7 +15,7 @@ struct Point {
 
 /// The estimators over the rows `rows` (indices into the outputs, repeats allowed).
 Point estimate(const std::vector<double>& fa, const std::vector<double>& fb, const std::vector<std::vector<double>>& fab,
-               const std::vector<std::size_t>& rows) {
+               const std::vector<std::size_t>& rows, const MeanNoise* nz) {
   const std::size_t d = fab.size();
   const double n = static_cast<double>(rows.size());
   double mean = 0.0;
@@ -24,6 +24,11 @@ Point estimate(const std::vector<double>& fa, const std::vector<double>& fb, con
   double var = 0.0;
   for (std::size_t j : rows) var += (fa[j] - mean) * (fa[j] - mean) + (fb[j] - mean) * (fb[j] - mean);
   var /= 2.0 * n - 1.0;
+  if (nz) {  // the noise left in the means inflates Var Y by the mean of their variances (sensitivity_noise.hpp)
+    double left = 0.0;
+    for (std::size_t j : rows) left += 0.5 * (nz->a[j] + nz->b[j]);
+    var -= left / n;
+  }
   Point p{std::vector<double>(d, 0.0), std::vector<double>(d, 0.0), std::vector<double>(d, 0.0)};
   for (std::size_t i = 0; i < d; ++i) {
     double s = 0.0, t = 0.0;
@@ -34,6 +39,10 @@ Point estimate(const std::vector<double>& fa, const std::vector<double>& fb, con
       yy += fb[j] * fab[i][j];
       ym += 0.5 * (fb[j] + fab[i][j]);
       y2 += 0.5 * (fb[j] * fb[j] + fab[i][j] * fab[i][j]);
+      if (nz) {  // E (e_A − e_AB)² = σ²_A + σ²_AB; E (e_B² + e_AB²)/2 = (σ²_B + σ²_AB)/2
+        t -= nz->a[j] + nz->ab[i][j];
+        y2 -= 0.5 * (nz->b[j] + nz->ab[i][j]);
+      }
     }
     p.first[i] = var > 0.0 ? s / n / var : 0.0;
     p.total[i] = var > 0.0 ? t / (2.0 * n) / var : 0.0;
@@ -55,8 +64,10 @@ double quantile(std::vector<double> v, double q) {
 
 SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<double>& fb,
                            const std::vector<std::vector<double>>& fab, std::size_t resamples, double confidence,
-                           std::uint64_t seed) {
+                           std::uint64_t seed, const MeanNoise* noise) {
   const std::size_t n = fa.size(), d = fab.size();
+  if (noise && (noise->a.size() != n || noise->b.size() != n || noise->ab.size() != d))
+    throw std::invalid_argument("sobol_indices: the noise of the means differs in shape from the outputs");
   if (fb.size() != n) throw std::invalid_argument("sobol_indices: f(A) and f(B) differ in length");
   for (const auto& c : fab)
     if (c.size() != n) throw std::invalid_argument("sobol_indices: f(AB_i) differs in length from f(A)");
@@ -76,20 +87,25 @@ SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<doub
       for (auto& x : *v) x = {std::nan(""), std::nan(""), std::nan("")};
     return out;
   }
-  const Point p = estimate(fa, fb, fab, rows);
+  const Point p = estimate(fa, fb, fab, rows, noise);
   {
     double mean = 0.0;
     for (std::size_t j : rows) mean += fa[j] + fb[j];
     mean /= 2.0 * static_cast<double>(rows.size());
     for (std::size_t j : rows) out.variance += (fa[j] - mean) * (fa[j] - mean) + (fb[j] - mean) * (fb[j] - mean);
     out.variance /= 2.0 * static_cast<double>(rows.size()) - 1.0;
+    if (noise) {
+      double left = 0.0;
+      for (std::size_t j : rows) left += 0.5 * (noise->a[j] + noise->b[j]);
+      out.variance -= left / static_cast<double>(rows.size());
+    }
   }
   std::mt19937_64 rng(seed);
   std::vector<std::vector<double>> bs_first(d), bs_total(d), bs_janon(d);
   std::vector<std::size_t> sample(rows.size());
   for (std::size_t b = 0; b < resamples; ++b) {
     for (auto& s : sample) s = rows[static_cast<std::size_t>(rng() % rows.size())];
-    const Point q = estimate(fa, fb, fab, sample);
+    const Point q = estimate(fa, fb, fab, sample, noise);
     for (std::size_t i = 0; i < d; ++i) {
       bs_first[i].push_back(q.first[i]);
       bs_total[i].push_back(q.total[i]);

@@ -32,9 +32,19 @@ struct SobolIndices {
 /// among such estimators, no uncentred f factor (Saltelli's first order for f = x: σ_∞² = 7.4, this: 0).
 /// The bootstrap draws the same rows for all three estimators (the Saltelli/Jansen results do not change). Bootstrap: `resamples` draws of the rows with
 /// replacement (std::mt19937_64, seed), percentile interval at `confidence` (e.g. 0.95).
+/// Outputs that are means of R replicates with run-to-run noise: the variance of each row's mean that
+/// the noise leaves (its replicates' unbiased variance / R) for A, B and each AB_i. Given, the
+/// estimators are those of E[Y | x] (the effect without the noise): the noise is taken out of V
+/// (mean of (σ²_A + σ²_B)/2), of Jansen's numerator (σ²_A + σ²_ABi per row) and of Janon's
+/// denominator ((σ²_B + σ²_ABi)/2 per row); Saltelli's numerator is unbiased as it is.
+struct MeanNoise {
+  std::vector<double> a, b;
+  std::vector<std::vector<double>> ab;
+};
+
 SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<double>& fb,
                            const std::vector<std::vector<double>>& fab, std::size_t resamples = 1000,
-                           double confidence = 0.95, std::uint64_t seed = 12345);
+                           double confidence = 0.95, std::uint64_t seed = 12345, const MeanNoise* noise = nullptr);
 
 /// The asymptotic standard deviations σ_∞ of √N (Ŝ_i − S_i) and √N (Ŝ_Ti − S_Ti) for N i.i.d. rows
 /// (central limit theorem with the delta method for the ratio Ŝ = mean Z / V̂):

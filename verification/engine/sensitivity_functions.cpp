@@ -39,6 +39,7 @@ ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low
     const double v2 = a * a / 8.0;
     const double v13 = 8.0 * b * b * pi8 / 225.0;
     const double var = v1 + v2 + v13;
+    e.variance = var;
     e.first = {v1 / var, v2 / var, 0.0};
     e.total = {(v1 + v13) / var, v2 / var, v13 / var};
     e.second.assign(3, std::vector<double>(3, 0.0));
@@ -51,6 +52,7 @@ ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low
       prod *= 1.0 + v[i];
     }
     const double var = prod - 1.0;
+    e.variance = var;
     for (std::size_t i = 0; i < d; ++i) {
       e.first.push_back(v[i] / var);
       e.total.push_back(v[i] * prod / (1.0 + v[i]) / var);
@@ -69,6 +71,7 @@ ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low
       e.morris_mu_star.push_back(std::abs(f.coefficients[i]) * w);
       e.morris_sigma.push_back(0.0);
     }
+    e.variance = var;
     for (std::size_t i = 0; i < d; ++i) {
       e.first.push_back(vi[i] / var);
       e.total.push_back(vi[i] / var);

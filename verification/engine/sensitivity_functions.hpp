@@ -6,6 +6,7 @@
 //                    Analysis: The Primer, §4.7 / Sobol' & Levitan 1999)
 //   g(a_1..a_d):     f = Π (|4 x_i − 2| + a_i) / (1 + a_i), x_i ~ U[0, 1]  (Sobol' 1993 / Saltelli & Sobol' 1995)
 //   linear(c_1..c_d): f = Σ c_i x_i on any ranges: Morris effects EE_i = c_i (high_i − low_i) exactly
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,7 @@ struct ExactIndices {
   /// second[i][j] (i < j): the closed second-order index S_ij = V_ij / V (Ishigami: only S_13 =
   /// 8 b² π⁸ / 225 / V; g: V_i V_j / V; linear: 0). Empty where unknown (ln f).
   std::vector<std::vector<double>> second;
+  double variance = std::nan("");  // Var f over the inputs' distributions (NaN where unknown)
 };
 /// linear with `variances` (one per input, any distribution): S_i = S_Ti = c_i² Var x_i / Σ, no Morris values.
 ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low, const std::vector<double>& high,

@@ -3,6 +3,7 @@
 // linear test function.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -61,7 +62,17 @@ void analyse_morris(const Plan& plan, const ExactIndices& exact, Analysis& an) {
                                           std::tuple{"sigma", m.sigma_ci[i], std::string()}})
         an.idx_csv << "morris," << s.outputs[o] << ",\"" << s.params[i].label << "\"," << index << ","
                    << fmt::format("{:.17g},{:.17g},{:.17g},", iv.estimate, iv.low, iv.high) << ex << "\n";
-      if (!exact.morris_mu_star.empty()) {
+      if (s.function && s.noise_sd > 0.0 && !exact.morris_mu_star.empty() && exact.morris_mu_star[i] == 0.0) {
+        // An inert input of a noisy function: its |EE| is |ε' − ε|/Δ, ε ~ N(0, σ²/R): μ* = 2σ / (Δ √(π R)).
+        const double floor = 2.0 * s.noise_sd / (morris_delta(s.levels) * std::sqrt(std::numbers::pi * static_cast<double>(s.replicates.size())));
+        const Interval& iv = m.mu_star_ci[i];
+        an.add_check(fmt::format("Morris μ* of the inert {} = the noise floor ({} + noise σ = {}, R = {})", s.params[i].label, s.function->name,
+                                 num(s.noise_sd), s.replicates.size()),
+                     floor, iv.estimate, std::abs(iv.estimate - floor), floor < iv.estimate ? iv.estimate - iv.low : iv.high - iv.estimate,
+                     fmt::format("the {:.0f} % bootstrap interval of μ* must contain 2σ/(Δ√(πR))", 100.0 * s.morris_confidence),
+                     floor >= iv.low && floor <= iv.high, fmt::format("interval [{}, {}]", num(iv.low), num(iv.high)));
+      }
+      if (!exact.morris_mu_star.empty() && s.noise_sd == 0.0) {
         const double e = std::abs(m.mu_star[i] - exact.morris_mu_star[i]);
         const double tol = 1e-9 * std::max(1.0, exact.morris_mu_star[i]);
         an.add_check(fmt::format("Morris μ* of {} ({})", s.params[i].label, s.function->name), exact.morris_mu_star[i],

@@ -11,6 +11,7 @@
 #include "engine/progress.hpp"
 #include "engine/run_cache.hpp"
 #include "engine/run_dispatch.hpp"
+#include "engine/sensitivity_noise.hpp"
 #include "engine/sensitivity_study.hpp"
 #include "engine/study.hpp"
 
@@ -55,7 +56,10 @@ void Runner::set_outputs(Run& r, const std::map<std::string, std::optional<doubl
 /// the run's own slot, whatever order the runs finish in.
 void Runner::run_all_runs(std::vector<Run>& runs, int jobs) {
   if (s.function) {
-    for (Run& r : runs) run_function(r);
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      run_function(runs[k]);
+      if (s.noise_sd > 0.0) runs[k].outputs[0] += s.noise_sd * standard_normal_draw(s.noise_seed, k);
+    }
     return;
   }
   std::vector<std::map<std::string, std::optional<double>>> probes(runs.size());
@@ -157,6 +161,12 @@ Run replicate_mean(const Run* reps, std::size_t count) {
   }
   for (double& y : r.outputs) y /= static_cast<double>(count);
   r.dt /= static_cast<double>(count);
+  r.replicates = count;
+  r.noise_var.assign(r.outputs.size(), 0.0);  // unbiased: Σ (y_j − ȳ)² / (R − 1)
+  for (std::size_t o = 0; o < r.outputs.size(); ++o) {
+    for (std::size_t j = 0; j < count; ++j) r.noise_var[o] += (reps[j].outputs[o] - r.outputs[o]) * (reps[j].outputs[o] - r.outputs[o]);
+    r.noise_var[o] /= static_cast<double>(count - 1);
+  }
   return r;
 }
 

@@ -3,6 +3,7 @@
 // of it — indices.csv rows, a table per transform, a bar figure per output, and for test functions
 // the checks against the exact indices (sensitivity_sobol_checks.cpp: interval widths, error rate).
 #include <cmath>
+#include <optional>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -52,6 +53,10 @@ void index_rows(const SobolIndices& si, const ExactIndices& exact_sobol, const s
                      fmt::format("the {:.0f} % bootstrap interval ({} resamples of the N rows) must contain the exact value",
                                  100.0 * s.confidence, s.resamples),
                      ex[i] >= iv.low && ex[i] <= iv.high, fmt::format("interval [{}, {}]", num(iv.low), num(iv.high)));
+        if (s.index_tolerance && tsuffix.empty())
+          an.add_check(fmt::format("{}_{} of {} within ±{} ({}, N = {})", kind, i + 1, s.params[i].label, num(*s.index_tolerance),
+                                   s.function->name, s.samples),
+                       ex[i], iv.estimate, e, *s.index_tolerance, s.index_tolerance_reason, e <= *s.index_tolerance, "");
       }
     }
   }
@@ -61,9 +66,12 @@ void index_rows(const SobolIndices& si, const ExactIndices& exact_sobol, const s
 /// itself (Y = f(B), Y^dummy = f(A): independent points, exact index 0). Saltelli's S and Jansen's S_T
 /// of such an input are exactly 0 (f(AB) − f(A) = 0 row by row), so only Janon's carries noise; an
 /// index whose interval does not clear the dummy's is not resolved at this N.
-void dummy_row(const DesignOutputs& y, const std::string& yname, const std::string& tsuffix, nlohmann::json& rows, Analysis& an) {
+void dummy_row(const DesignOutputs& y, const MeanNoise* nz, const std::string& yname, const std::string& tsuffix, nlohmann::json& rows,
+               Analysis& an) {
   const Sens& s = an.s;
-  const SobolIndices sd = sobol_indices(y.fa, y.fb, {y.fa}, s.resamples, s.confidence);
+  std::optional<MeanNoise> dz;
+  if (nz) dz = MeanNoise{nz->a, nz->b, {nz->a}};
+  const SobolIndices sd = sobol_indices(y.fa, y.fb, {y.fa}, s.resamples, s.confidence, 12345, dz ? &*dz : nullptr);
   const Interval& j = sd.first_janon[0];
   rows.push_back({yname, "dummy (inert: noise floor)", "0", "[0, 0]", "0", "[0, 0]", s.function ? "0" : "", s.function ? "0" : "",
                   num(j.estimate), fmt::format("[{}, {}]", num(j.low), num(j.high))});
@@ -148,15 +156,25 @@ void analyse_transform(const Plan& plan, const ExactIndices& exact, Transform tr
     DesignOutputs y = outputs_of_runs(plan, o, n, d);
     apply_transform(transform, y.fa, y.fb, y.fab, y.fba);
     const std::string yname = transformed_label(transform, s.outputs[o]);
-    const SobolIndices si = sobol_indices(y.fa, y.fb, y.fab, s.resamples, s.confidence);
-    if (s.function && s.resamples >= 100) check_interval_widths(si, transform, tsuffix, an);
+    // Replicates: the indices of the means' expectation E[y | x], the noise left in the means taken out
+    // (sensitivity_noise.hpp); of the output itself only (a transform's noise is not the output's).
+    const std::optional<MeanNoise> nz = transform == Transform::none ? mean_noise_of_runs(plan, o, n, d) : std::nullopt;
+    const SobolIndices si = sobol_indices(y.fa, y.fb, y.fab, s.resamples, s.confidence, 12345, nz ? &*nz : nullptr);
+    if (s.function && s.resamples >= 100 && !nz) check_interval_widths(si, transform, tsuffix, an);
     index_rows(si, exact_sobol, yname, tsuffix, rows, an);
-    dummy_row(y, yname, tsuffix, rows, an);
+    dummy_row(y, nz ? &*nz : nullptr, yname, tsuffix, rows, an);
     an.figures.push_back(index_figure(s, si, exact_sobol, yname, transform, o));
     if (s.second_order) second_order_rows(y, exact_sobol, yname, tsuffix, rows2, an);
+    if (!s.function)
+      sobol_subsets(y, nz, yname, transform == Transform::none ? std::to_string(o) : fmt::format("{}_{}", transform_name(transform), o), an);
   }
-  an.tables.push_back({{"title", fmt::format("Sobol' indices (Saltelli sampling, N = {}, {} runs; {} % bootstrap intervals){}", n, n * (d + 2),
+  const bool corrected = !s.replicates.empty() && transform == Transform::none;
+  an.tables.push_back({{"title", fmt::format("Sobol' indices (Saltelli sampling, N = {}, {} runs; {} % bootstrap intervals){}{}", n, n * (d + 2),
                                              100.0 * s.confidence,
+                                             corrected ? fmt::format(" of the mean of {} replicates, the noise left in the means taken out "
+                                                                     "(indices of E[y | x]; the noise fraction: table \"Run-to-run noise\")",
+                                                                     s.replicates.size())
+                                                       : std::string(),
                                              transform == Transform::none ? "" : fmt::format(
                                                  ": indices of the TRANSFORMED output {} (declared transforms = [\"{}\"]), not of the output itself",
                                                  transformed_label(transform, "y"), transform_name(transform)))},

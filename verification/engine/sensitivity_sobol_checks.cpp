@@ -68,7 +68,7 @@ void sobol_convergence(const ExactIndices& exact_sobol, Transform transform, con
   nlohmann::json crow = nlohmann::json::array();
   // Owen-scrambled points: the error at one N is random; its root mean square over kScramblings
   // scramblings (seeds seed, seed + 1, …) is what falls at the quasi-random rate.
-  constexpr std::uint64_t kScramblings = 8;
+  constexpr std::uint64_t kScramblings = 32;
   for (std::size_t nn : s.convergence) {
     double e2 = 0.0, ej2 = 0.0;
     for (std::uint64_t k = 0; k < kScramblings; ++k) {

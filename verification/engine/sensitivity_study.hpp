@@ -41,6 +41,12 @@ struct Sens {
   bool second_order = false;      // [sobol] second_order: also BA_i, the S_ij (sensitivity_second_order.hpp)
   std::optional<double> second_order_tolerance;  // function studies: |S_ij − exact| allowed, with its reason
   std::string second_order_reason;
+  bool delta = false;                 // [sobol] delta: also Borgonovo's δ from the rows of A and B (sensitivity_delta.hpp)
+  std::size_t delta_resamples = 100;  // [sobol] delta_bootstrap
+  std::optional<double> delta_tolerance;  // Ishigami: |δ − reference| allowed, with its reason
+  std::string delta_reason;
+  std::optional<double> index_tolerance;  // [sobol] tolerance, function studies: |S − exact| allowed for S, S_T, noise fraction
+  std::string index_tolerance_reason;
   std::vector<std::size_t> convergence;     // function studies: Sobol' sample sizes for the error rate
   std::optional<double> expected_order;
   double order_band = 0.3;
@@ -57,6 +63,11 @@ struct Sens {
   // outputs are the mean over the entries — for outputs with run-to-run noise (a silo's discharge rate
   // set by which arches form): the noise of the mean falls as 1/√(entries).
   std::vector<std::vector<std::string>> replicates;
+  // A test function with run-to-run noise (the check of the noise split, sensitivity_noise.hpp): each
+  // evaluation adds noise_sd × a standard normal draw, run k's draw from a generator seeded by
+  // (noise_seed, k); `replicates = R` (a count for a function) evaluates every sample R times.
+  double noise_sd = 0.0;
+  std::uint64_t noise_seed = 1;
   nlohmann::json setup = nlohmann::json::object();
 };
 
@@ -68,6 +79,10 @@ struct Run {
   std::string method, status, message;
   std::vector<double> outputs;                // NaN: missing
   double dt = std::nan("");                   // dt_fraction: the Δt this run used
+  // Replicates: the unbiased variance of each output over the sample's replicates (run-to-run noise;
+  // empty without replicates, NaN where an output is missing) and how many there were.
+  std::vector<double> noise_var;
+  std::size_t replicates = 1;
 };
 
 bool run_ok(const Run& r);
@@ -154,10 +169,20 @@ struct Analysis {
 void report_runs(const RunTable& table, bool derived_dt, Analysis& an);
 
 void analyse_oat(const Plan& plan, Analysis& an);
+/// Run-to-run noise against effect for studies with replicates (sensitivity_noise.cpp).
+void analyse_noise(const Plan& plan, const ExactIndices& exact, Analysis& an);
+/// The noise each Sobol' row's mean carries (its replicates' variance / R), none without replicates.
+std::optional<MeanNoise> mean_noise_of_runs(const Plan& plan, std::size_t o, std::size_t n, std::size_t d);
 void analyse_morris(const Plan& plan, const ExactIndices& exact, Analysis& an);
 void analyse_sobol(const Plan& plan, const ExactIndices& exact, Analysis& an);
+void analyse_delta(const Plan& plan, Analysis& an);  // sensitivity_sobol_delta.cpp
 
 struct DesignOutputs;
+/// Convergence against sample size for a study of a case (sensitivity_sobol_subsets.cpp): the indices on
+/// the nested first N/8, N/4, N/2, N rows, a table, a figure and the ranking's stability.
+/// yname: the (transformed) output's label; id: what makes the figure's id unique.
+void sobol_subsets(const DesignOutputs& y, const std::optional<MeanNoise>& nz, const std::string& yname, const std::string& id, Analysis& an);
+
 /// Second-order indices of one output (sensitivity_sobol_second.cpp): table rows, indices.csv rows
 /// ("i:j", S2) and, for test functions, the checks against the exact S_ij.
 void second_order_rows(const DesignOutputs& y, const ExactIndices& exact, const std::string& yname, const std::string& tsuffix,
