@@ -35,6 +35,10 @@ void check_case_file(const std::filesystem::path& file, const std::vector<std::s
 /// touches the file system, so a target runs thousands of inputs a second.
 void check_case_text(std::string_view text, const std::filesystem::path& file, const std::vector<std::string>& overrides);
 
+/// Only reads the case text (dem::read_case_text, no check_case: the reader alone, thousands of inputs a
+/// second under ASan); the same policy for what it throws.
+void read_case_text(std::string_view text, const std::filesystem::path& file);
+
 /// The whole file (once per process, e.g. a fixed base case).
 std::string read_text(const std::filesystem::path& path);
 
