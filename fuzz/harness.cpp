@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <exception>
 #include <fstream>
+#include <iterator>
 #include <string_view>
 
 #include <unistd.h>
@@ -75,9 +76,14 @@ void write_file(const std::filesystem::path& path, const std::uint8_t* data, std
   if (!out) finding("cannot write the scratch file " + path.string());
 }
 
-void check_case_file(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+namespace {
+
+// Reads (`read`) and checks a case; aborts on anything but success or a CaseError located at `file`.
+template <class Read>
+void check_case_with(const std::filesystem::path& file, Read read, bool check = true) {
   try {
-    const dem::Case c = dem::read_case(file, overrides);
+    const dem::Case c = read();
+    if (!check) return;
     // check_case's neighbour search is quadratic when one element is much larger than the others
     // (one cell for all): legitimate, but 10^4 elements take > 10 s under ASan + coverage. Larger
     // models are read, not checked.
@@ -98,6 +104,27 @@ void check_case_file(const std::filesystem::path& file, const std::vector<std::s
   } catch (...) {
     finding("unknown exception");
   }
+}
+
+}  // namespace
+
+void check_case_file(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  check_case_with(file, [&] { return dem::read_case(file, overrides); });
+}
+
+void check_case_text(std::string_view text, const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  check_case_with(file, [&] { return dem::read_case_text(text, file, overrides); });
+}
+
+void read_case_text(std::string_view text, const std::filesystem::path& file) {
+  check_case_with(file, [&] { return dem::read_case_text(text, file); }, false);
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!in.good() && !in.eof()) finding("cannot read " + path.string());
+  return text;
 }
 
 }  // namespace fuzz

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace fuzz {
@@ -29,5 +30,16 @@ void write_file(const std::filesystem::path& path, const std::uint8_t* data, std
 /// Reads and checks the case `file` with `overrides` (check_case only up to 2000 elements); aborts on
 /// anything but success or a located CaseError.
 void check_case_file(const std::filesystem::path& file, const std::vector<std::string>& overrides);
+
+/// The same for the case text `text` read as if it were the file `file` (dem::read_case_text): nothing
+/// touches the file system, so a target runs thousands of inputs a second.
+void check_case_text(std::string_view text, const std::filesystem::path& file, const std::vector<std::string>& overrides);
+
+/// Only reads the case text (dem::read_case_text, no check_case: the reader alone, thousands of inputs a
+/// second under ASan); the same policy for what it throws.
+void read_case_text(std::string_view text, const std::filesystem::path& file);
+
+/// The whole file (once per process, e.g. a fixed base case).
+std::string read_text(const std::filesystem::path& path);
 
 }  // namespace fuzz

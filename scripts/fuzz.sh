@@ -1,20 +1,20 @@
 #!/usr/bin/env bash
 # Fuzzes the input boundary with libFuzzer (fuzz/README.md): fuzz_case (whole case text → read_case +
-# check_case), fuzz_override (--set strings on a fixed case), fuzz_checkpoint (crafted checkpoints restarted),
+# check_case), fuzz_case_read (the same text → the reader alone, fast), fuzz_override (--set strings on a fixed case), fuzz_checkpoint (crafted checkpoints restarted),
 # fuzz_study and fuzz_sensitivity (study and sensitivity files) and fuzz_result (result.json → the report),
 # built in build-san/ with ASan + UBSan.
 #   scripts/fuzz.sh --minutes 30        30 minutes in all, split over the targets by their weights (the long run)
-#   scripts/fuzz.sh --seconds 120       120 s for case and override, 3/8 of it (45 s) for each of the four
-#                                       others: 7 minutes in all (CI)
+#   scripts/fuzz.sh --seconds 120       120 s for case and override, 3/8 of it (45 s) for each of the five
+#                                       others: 7 min 45 s in all (CI)
 #   scripts/fuzz.sh --runs 20000        a fixed number of inputs per target (repeatable)
-#   --target NAME                       one target only (case, override, checkpoint, study, sensitivity, result)
+#   --target NAME                       one target only (case, case_read, override, checkpoint, study, sensitivity, result)
 # The seeds are cases/, tests/lib/fixtures/ and fuzz/corpus/<target>/ (read only); what libFuzzer learns goes
 # to build-san/fuzz-work/<target>/. A finding (crash, sanitizer report, unlocated error) is written to
 # build-san/fuzz-findings/<target>/ and the script fails: fix it, then copy the input into
 # fuzz/regression/<target>/ so that ctest replays it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-per_target_seconds=60; runs=""; targets=(case override checkpoint study sensitivity result)
+per_target_seconds=60; runs=""; targets=(case case_read override checkpoint study sensitivity result)
 while [ $# -gt 0 ]; do
   case "$1" in
     --minutes) total=$(( $2 * 60 )); shift 2; per_target_seconds=-1 ;;
@@ -49,9 +49,9 @@ status=0
 for t in "${targets[@]}"; do
   work=build-san/fuzz-work/$t; findings=build-san/fuzz-findings/$t
   mkdir -p "$work" "$findings"
-  if [ "$t" = case ]; then seeds=(cases tests/lib/fixtures fuzz/regression/case)
+  if [ "$t" = case ] || [ "$t" = case_read ]; then seeds=(cases tests/lib/fixtures fuzz/regression/case)
   else seeds=(fuzz/corpus/"$t"); [ -d fuzz/regression/"$t" ] && seeds+=(fuzz/regression/"$t"); fi
-  dict=(); case "$t" in case|override|study|sensitivity) dict=(-dict=fuzz/case.dict) ;; esac
+  dict=(); case "$t" in case|case_read|override|study|sensitivity) dict=(-dict=fuzz/case.dict) ;; esac
   seconds=$(( unit_seconds * $(weight "$t") / 8 )); [ "$seconds" -lt 1 ] && seconds=1
   limit=(-max_total_time="$seconds")
   [ -n "$runs" ] && limit=(-runs="$runs")

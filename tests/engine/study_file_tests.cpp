@@ -187,6 +187,42 @@ TEST_CASE("Kind-specific tables: refinement order, mode map blocks, bisection to
   CHECK_THAT(refusal(good_study() + "\n[stability]\nlow = 1\nhigh = 2\n"), Contains("stability: a [stability] table needs kind = \"stability\""));
 }
 
+TEST_CASE("A mode map's overrides are read with the study file and refused at their line", "[study_file]") {
+  const std::string block_mode = std::string(DEM2D_SOURCE_DIR) + "/cases/pre/block_mode.toml";
+  const std::string map = "[study]\n"                                    // 1
+                          "case = \"" + block_mode + "\"\n"              // 2
+                          "kind = \"mode_map\"\n"                        // 3
+                          "set = [\"numerics.duration=0.01\"]\n"         // 4
+                          "[mode_map]\n"                                 // 5
+                          "blocks = [[2, 1], [1, 3]]\n"                  // 6
+                          "phis_deg = [30]\n"                            // 7
+                          "alphas_deg = [20]\n"                          // 8
+                          "radius = 0.0125\n"                            // 9
+                          "wall_contact = 1\n"                           // 10
+                          "[[check]]\nvalue = 0.0\ntolerance = 0.0\nreason = \"a mode is discrete\"\n";
+  const fs::path f = write("mode_map", "study.toml", map);
+  CHECK(ver::read_study(f).blocks.size() == 2);
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string t = map;
+    REQUIRE(t.find(from) != std::string::npos);
+    return t.replace(t.find(from), from.size(), to);
+  };
+  // the study's own override: its line in [study] set
+  CHECK_THAT(refusal(with("numerics.duration=0.01", "numerics.durtion=0.01")),
+             StartsWith(at_line(4) + "set: --set numerics.durtion=0.01: numerics.durtion: unknown key"));
+  // the mode map's own overrides: a contact the case does not have, a lattice it cannot make
+  CHECK_THAT(refusal(with("wall_contact = 1", "wall_contact = 7")),
+             StartsWith(at_line(10) + "mode_map.wall_contact: the case ") && Contains("block 2x1") && Contains("contact.7"));
+  CHECK_THAT(refusal(with("case = \"" + block_mode, "case = \"" + kFreeFall)),
+             StartsWith(at_line(8) + "mode_map.alphas_deg: the case ") && Contains("physics.gravity.direction"));
+  const std::string no_lattice = std::string(DEM2D_SOURCE_DIR) + "/cases/pre/block_on_slope.toml";  // one contact, no [[lattice]]
+  CHECK_THAT(refusal(with("wall_contact = 1", "wall_contact = 0").replace(map.find(block_mode), block_mode.size(), no_lattice)),
+             StartsWith(at_line(6) + "mode_map.blocks: the case ") && Contains("lattice"));
+  // variants are not what a mode map runs
+  CHECK_THAT(refusal(map + "[[variant]]\nlabel = \"v\"\nset = [\"numerics.dt=1e-6\"]\n"),
+             StartsWith(at_line(15) + "variant: a mode map runs its grid"));
+}
+
 TEST_CASE("The case path is taken relative to the study file, and a missing case is named with its line", "[study_file]") {
   const fs::path root = fs::temp_directory_path() / "dem2d_unit_study_file" / "relative";
   fs::remove_all(root);

@@ -87,6 +87,29 @@ hs = run("study", "--help")
 if hs.returncode != 0 or "Exit status:" not in hs.stdout:
     fails.append(f"study --help: exit {hs.returncode}, no exit statuses")
 
+# Ctrl-C during a long `dem2d check` ends it at once (check writes nothing: SIGINT keeps its default action).
+# The case: minimal.toml with a row of 2 000 000 disks (reading it takes seconds).
+import signal
+import time
+with tempfile.TemporaryDirectory() as tmp:
+    text = open(os.path.join(src, "tests/lib/fixtures/minimal.toml")).read()
+    row = '[[row]]\nmaterial = "sand"\nradius = "1 cm"\nstart = ["0 m", "5 cm"]\nstep = ["2.1 cm", "0 m"]\ncount = 2000000\n\n'
+    big = os.path.join(tmp, "long_check.toml")
+    open(big, "w").write(text.replace("[[wall]]", row + "[[wall]]", 1))
+    p = subprocess.Popen([exe, "check", big], cwd=src, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    time.sleep(0.5)
+    sent = time.monotonic()
+    p.send_signal(signal.SIGINT)
+    try:
+        p.wait(timeout=20)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        p.wait()
+    took = time.monotonic() - sent
+    if p.returncode != -signal.SIGINT or took > 1.0:
+        fails.append(f"check stopped by SIGINT after 0.5 s: exit {p.returncode} {took:.2f} s after the signal "
+                     f"(expected to end at once by the signal, {-signal.SIGINT})")
+
 if fails:
     sys.exit("FAIL:\n  " + "\n  ".join(fails))
 print("OK:", v.stdout.strip())

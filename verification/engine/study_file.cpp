@@ -430,10 +430,41 @@ dem::Case read_variant_case(const Study& s, const Variant& v, const std::vector<
   }
 }
 
+/// A mode map runs its grid, not variants: [[variant]] is refused; the case is read with every block's
+/// overrides (mode_map_sets, the first φ and α) before anything runs. An error names the line of the
+/// study's override at fault, or of the [mode_map] key whose overrides the case does not take.
+void check_mode_map_sets(const Study& s, const toml::table& root, const std::string& file) {
+  if (const toml::array* vs = root["variant"].as_array(); vs && !vs->empty())
+    throw dem::CaseError(fmt::format("{}: variant: a mode map runs its grid of blocks and angles, not variants "
+                                     "(give the overrides in [study] set)", dem::where(*vs->get(0), file)));
+  const toml::table& mm = *root["mode_map"].as_table();
+  for (std::size_t b = 0; b < s.blocks.size(); ++b) {
+    const std::vector<std::string> sets = mode_map_sets(s, b, s.phis.front(), s.alphas.front());
+    try {
+      (void)dem::read_case(s.case_file, sets);
+    } catch (const dem::CaseError& e) {
+      const std::string what = e.what();
+      std::string culprit;  // the override the case names ("--set key=value: key: …")
+      for (const std::string& kv : sets)
+        if (what.rfind("--set " + kv + ":", 0) == 0) culprit = kv;
+      if (culprit.empty() || std::find(s.set.begin(), s.set.end(), culprit) != s.set.end())
+        throw dem::CaseError(fmt::format("{}: set: {}", override_location(root, file, 0, culprit), what));
+      const char* key = culprit.rfind("contact.", 0) == 0           ? "wall_contact"  // φ of that contact
+                        : culprit.rfind("physics.gravity", 0) == 0 ? "alphas_deg"    // α as gravity's direction
+                                                                   : "blocks";       // lattice and pivot probes
+      const toml::node* at = mm.get(key) ? mm.get(key) : root.get("mode_map");
+      throw dem::CaseError(fmt::format("{}: mode_map.{}: the case {} does not take the mode map's overrides "
+                                       "(block {}x{}): {}", dem::where(*at, file), key, s.case_path, s.blocks[b].first,
+                                       s.blocks[b].second, what));
+    }
+  }
+}
+
 /// Reads the base case once per variant (with the study's and the variant's overrides, and the
 /// finest level's; a stability study's without its bisected parameter) and refuses a check of a probe the case does not have, or a check value given in
 /// another unit than the probe's.
 void check_probes(const Study& s, const toml::table& root, const std::string& file) {
+  if (s.kind == Kind::mode_map) check_mode_map_sets(s, root, file);
   if (s.kind == Kind::stability)  // no probes to check, but every variant's overrides must read
     for (const Variant& v : s.variants) {
       std::vector<std::string> sets = s.set;

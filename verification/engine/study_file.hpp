@@ -126,4 +126,9 @@ bool applies(const Check& c, const Variant& v);
 /// The words of a study kind in the file and in result.json.
 const char* kind_word(Kind k);
 
+/// The overrides of one mode-map grid point (study_mode_map.cpp): the study's `set`, then the block's
+/// lattice (`blocks[block]`), the slope angle α as the gravity direction, the friction angle φ of contact
+/// `wall_contact`, the pivot probes; read_study reads the case with them for every block before anything runs.
+std::vector<std::string> mode_map_sets(const Study& s, std::size_t block, double phi, double alpha);
+
 }  // namespace ver

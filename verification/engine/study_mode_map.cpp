@@ -73,6 +73,18 @@ nlohmann::json mode_chart(const Study& s, const std::vector<Point>& pts) {
 
 }  // namespace
 
+std::vector<std::string> mode_map_sets(const Study& s, std::size_t block, double phi, double alpha) {
+  const auto [cols, rows] = s.blocks.at(block);
+  std::vector<std::string> sets = s.set;
+  sets.push_back(fmt::format("lattice.0.columns={}", cols));
+  sets.push_back(fmt::format("lattice.0.rows={}", rows));
+  sets.push_back(fmt::format("physics.gravity.direction={:.17g} deg", alpha * 180.0 / std::numbers::pi - 90.0));
+  sets.push_back(fmt::format("contact.{}.friction_angle={:.17g} deg", s.wall_contact, phi * 180.0 / std::numbers::pi));
+  sets.push_back(fmt::format("probe.0.quantity=e{}.px(1,-1)", cols - 1));
+  sets.push_back(fmt::format("probe.2.quantity=e{}.px(1,-1)", cols - 1));
+  return sets;
+}
+
 void run_mode_map(StudyRun& run) {
   const Study& s = run.s;
   const StudyOptions& opt = run.opt;
@@ -97,14 +109,7 @@ void run_mode_map(StudyRun& run) {
                       mode_at("incline.mode", alpha + s.margin, phi, bw, bh) != p.ref ||
                       mode_at("incline.mode", alpha, phi - s.margin, bw, bh) != p.ref ||
                       mode_at("incline.mode", alpha, phi + s.margin, bw, bh) != p.ref;
-    std::vector<std::string> sets = s.set;
-    sets.push_back(fmt::format("lattice.0.columns={}", cols));
-    sets.push_back(fmt::format("lattice.0.rows={}", rows));
-    sets.push_back(fmt::format("physics.gravity.direction={:.17g} deg", alpha * 180.0 / std::numbers::pi - 90.0));
-    sets.push_back(fmt::format("contact.{}.friction_angle={:.17g} deg", s.wall_contact, phi * 180.0 / std::numbers::pi));
-    sets.push_back(fmt::format("probe.0.quantity=e{}.px(1,-1)", cols - 1));
-    sets.push_back(fmt::format("probe.2.quantity=e{}.px(1,-1)", cols - 1));
-    plan[k].sets = sets;
+    plan[k].sets = mode_map_sets(s, p.block, phi, alpha);
   });
   const std::vector<RunOut> mode_runs = run.run_many(plan, opt.jobs);
   for (std::size_t k = 0; k < pts.size(); ++k) {

@@ -143,8 +143,11 @@ struct Reader {
       const toml::table* t = arr->get(k)->as_table();
       if (!t) top.fail(name, fmt::format("expected [[{}]] tables", name));
       TableReader r(*t, fmt::format("{}.{}", name, k), file);
+      const std::size_t before = c.model.elements.size();
       f(r, k);
       r.finish();
+      if (c.model.elements.size() > before)  // the table that made these elements, for check_case's errors
+        c.element_sources.push_back({before, where(*t, file), fmt::format("{}.{}", name, k)});
     }
   }
 
@@ -529,6 +532,7 @@ void check_base_friction_rate(const Model& m, const std::string& v_eps_location)
 /// [stop] after_peak = { quantity = "platen.fy", drop = 0.5, from = "1 ms" }: stop past the peak.
 void read_after_peak(const TableReader& r, StopSpec& stop) {
   stop.after_peak_quantity = r.string("quantity");
+  stop.after_peak_location = where(*r.node("quantity"), r.file());
   stop.after_peak_drop = r.number("drop", 0.5);
   stop.after_peak_from = r.quantity("from", dims::time, 0.0);
   if (!(stop.after_peak_drop > 0.0 && stop.after_peak_drop < 1.0))
@@ -982,11 +986,8 @@ void Reader::read_probes(const TableReader& top) {
   });
 }
 
-}  // namespace
-
-Case read_case(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+Case read_parsed_case(toml::table root, const std::filesystem::path& path, const std::vector<std::string>& overrides) {
   const std::string file = path.string();
-  toml::table root = parse_toml_file(path);
   for (const auto& kv : overrides) apply_override(root, kv);
 
   Case c;
@@ -1030,6 +1031,23 @@ Case read_case(const std::filesystem::path& path, const std::vector<std::string>
   return c;
 }
 
+}  // namespace
+
+Case read_case(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  return read_parsed_case(parse_toml_file(path), path, overrides);
+}
+
+Case read_case_text(std::string_view text, const std::filesystem::path& path, const std::vector<std::string>& overrides) {
+  return read_parsed_case(parse_toml_text(text, path), path, overrides);
+}
+
+ElementSource element_source(const Case& c, std::size_t element) {
+  const auto after = std::upper_bound(c.element_sources.begin(), c.element_sources.end(), element,
+                                      [](std::size_t k, const ElementSource& s) { return k < s.first; });
+  if (after == c.element_sources.begin()) return {0, c.path.string(), ""};
+  return *std::prev(after);
+}
+
 double check_case(const Case& c, StabilityBound* bound) {
   const Model& m = c.model;
   const Elements& e = m.elements;
@@ -1045,17 +1063,23 @@ double check_case(const Case& c, StabilityBound* bound) {
     const bool both_fixed = e.motion[p.i] != Motion::free && e.motion[p.j] != Motion::free;
     const double tol = both_fixed ? 1e-9 * std::min(e.radius[p.i], e.radius[p.j])
                                   : 0.05 * std::min(e.radius[p.i], e.radius[p.j]);
-    if (overlap > tol)
-      throw CaseError(fmt::format("{}: elements {} and {} overlap by {:.4g} m at the start{}", file, p.i, p.j, overlap,
-                                  both_fixed ? " (both fixed: overlapping fixed geometry)" : " (more than 5 % of a radius)"));
+    if (overlap > tol) {
+      const ElementSource a = element_source(c, p.i), b = element_source(c, p.j);
+      throw CaseError(fmt::format("{}: {}elements {} and {} overlap by {:.4g} m at the start (element {}: {}{}){}", b.location,
+                                  b.key.empty() ? "" : b.key + ": ", p.i, p.j, overlap, p.i, a.key.empty() ? "" : a.key + ", ",
+                                  a.location, both_fixed ? " (both fixed: overlapping fixed geometry)" : " (more than 5 % of a radius)"));
+    }
   }
   for (std::size_t i = 0; i < e.size(); ++i) {
     for (const Wall& w : m.walls) {
       const Vec2 ctr{e.x[i], e.y[i]};
       const double overlap = e.radius[i] - norm(closest_point(w, ctr) - ctr);
       const double tol = e.motion[i] != Motion::free ? 1e-9 * e.radius[i] : 0.05 * e.radius[i];
-      if (overlap > tol)
-        throw CaseError(fmt::format("{}: element {} overlaps wall \"{}\" by {:.4g} m at the start", file, i, w.name, overlap));
+      if (overlap > tol) {
+        const ElementSource a = element_source(c, i);
+        throw CaseError(fmt::format("{}: {}element {} overlaps wall \"{}\" by {:.4g} m at the start", a.location,
+                                    a.key.empty() ? "" : a.key + ": ", i, w.name, overlap));
+      }
     }
   }
   // The time step against the stability limit of every contact the case can form.

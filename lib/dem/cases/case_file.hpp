@@ -5,6 +5,7 @@
 // anything runs, as `file:line: key: what was expected`.
 #include <filesystem>
 #include <optional>
+#include <string_view>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -84,8 +85,16 @@ struct StopSpec {
   // after_peak: stop once |q| has fallen below (1 − drop) × its largest |q| so far (a load past its
   // peak, e.g. the platen force of a bending test).
   std::string after_peak_quantity;                 // empty: no such criterion
+  std::string after_peak_location;                 // "file:line" (or "--set …") of its quantity
   double after_peak_drop = 0.5;                    // fraction of the peak lost, in (0, 1)
   double after_peak_from = 0.0;                    // track the peak only from this time (skip start-up) [s]
+};
+
+/// The table of a case file that made a run of elements (check_case's errors name it).
+struct ElementSource {
+  std::size_t first = 0;  // its first element; it made every element up to the next source's first
+  std::string location;   // "file:line" of the table
+  std::string key;        // "element.3", "arrangement.0", …
 };
 
 struct Case {
@@ -98,10 +107,19 @@ struct Case {
   std::vector<std::string> overrides;
   nlohmann::json resolved;  // the case after overrides, as read (for provenance)
   std::string dt_location;  // "file:line" (or "--set …") of numerics.dt, for the time-step error
+  std::vector<ElementSource> element_sources;  // in element order
 };
+
+/// The table that made `element` ({0, the case file, ""} when none is known).
+ElementSource element_source(const Case& c, std::size_t element);
 
 /// Reads a case file and applies `key=value` overrides. Throws CaseError with file:line: key: ...
 Case read_case(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
+
+/// read_case of `text` as if it were the file `path` (the same errors, every location names `path`);
+/// nothing is read from the file system (the fuzz targets).
+Case read_case_text(std::string_view text, const std::filesystem::path& path,
+                    const std::vector<std::string>& overrides = {});
 
 /// Checks what can only be checked on the assembled model: initial overlaps, the time-step limit over
 /// every contact the case can form. Throws CaseError. Returns the stability limit [s]; `bound`, if

@@ -339,4 +339,15 @@ toml::table parse_toml_file(const std::filesystem::path& path, const std::string
   }
 }
 
+toml::table parse_toml_text(std::string_view text, const std::filesystem::path& path) {
+  const std::string file = path.string();
+  try {
+    return toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    throw CaseError(fmt::format("{}:{}: syntax: {}", file, e.source().begin.line, e.description()));
+  } catch (const std::exception& e) {
+    throw CaseError(fmt::format("{}: cannot read: {}", file, e.what()));
+  }
+}
+
 }  // namespace dem

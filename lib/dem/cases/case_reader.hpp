@@ -90,6 +90,10 @@ class TableReader {
 /// another file named it) and "file:line: syntax: …" as CaseError.
 toml::table parse_toml_file(const std::filesystem::path& path, const std::string& from = "");
 
+/// Parses TOML text as if it were the file `path` (the same "file:line: syntax: …" errors, every node's
+/// source names `path`); the file system is not touched (the fuzz targets read from memory).
+toml::table parse_toml_text(std::string_view text, const std::filesystem::path& path);
+
 /// The word of `known` nearest to `word` (edit distance ≤ max(2, |word|/3)), or "" if none is near.
 std::string nearest_word(const std::string& word, const std::vector<std::string>& known);
 

@@ -161,6 +161,16 @@ void get_slots(Reader& r, std::vector<Slot>& v) {
 }  // namespace
 
 /// Friend of Simulation: reads and writes its private state.
+namespace {
+// "the case FILE" (or "the case" when it is not named): what a restart into it that does not fit names.
+std::string case_named(const RestartInto& into) {
+  return into.case_file.empty() ? std::string("the case") : fmt::format("the case {}", into.case_file);
+}
+std::string material_name(const Model& m, std::int32_t k) {
+  return k >= 0 && static_cast<std::size_t>(k) < m.materials.size() ? m.materials[static_cast<std::size_t>(k)].name : "?";
+}
+}  // namespace
+
 struct SimulationAccess {
   static std::string write(const Simulation& sim) {
     Writer w;
@@ -185,16 +195,18 @@ struct SimulationAccess {
     w.put_vec(sim.y_ref_);
     w.put_vec(sim.wall_ref_);
     w.put(sim.skin_), w.put(sim.time_), w.put(sim.step_), w.put(sim.rebuilds_), w.put(sim.preloading_);
+    w.put(sim.plate_travel_.displacement), w.put(sim.plate_travel_.travel);  // version 5: base plate travel (M21)
     return w.out;
   }
 
-  static void read(Simulation& sim, const Checkpoint& ck, bool other_case) {
+  static void read(Simulation& sim, const Checkpoint& ck, bool other_case, const RestartInto& into) {
     const std::string& file = ck.file;
+    const std::string the_case = case_named(into);
     Reader r{ck.state, 0, file};
     Elements& e = sim.m_.elements;
     const auto n = r.get<std::uint64_t>();
     if (n != e.size())
-      throw CaseError(fmt::format("{}: restart: the checkpoint has {} elements, the case {}", file, n, e.size()));
+      throw CaseError(fmt::format("{}: restart: the checkpoint has {} elements, {} has {}", file, n, the_case, e.size()));
     {  // the elements take the checkpoint's order first (their properties come from the case)
       std::vector<std::uint32_t> ids;
       r.get_vec(ids);
@@ -212,19 +224,23 @@ struct SimulationAccess {
     check_element_state(file, e);
     const auto nw = r.get<std::uint64_t>();
     if (nw != sim.m_.walls.size())
-      throw CaseError(fmt::format("{}: restart: the checkpoint has {} walls, the case {}", file, nw, sim.m_.walls.size()));
+      throw CaseError(fmt::format("{}: restart: the checkpoint has {} walls, {} has {}", file, nw, the_case, sim.m_.walls.size()));
     for (Wall& wl : sim.m_.walls) wl.a = r.get<Vec2>(), wl.b = r.get<Vec2>(), wl.increment = r.get<Vec2>(), wl.force = r.get<Vec2>();
     check_wall_state(file, sim.m_.walls);
     read_contacts(sim, r, !other_case);
     check_references(file, sim.x_ref_, sim.y_ref_, sim.wall_ref_, n, nw);
     sim.skin_ = r.get<double>(), sim.time_ = r.get<double>(), sim.step_ = r.get<std::int64_t>();
     sim.rebuilds_ = r.get<std::int64_t>(), sim.preloading_ = r.get_bool("preloading");
+    sim.plate_travel_.displacement = r.get<Vec2>(), sim.plate_travel_.travel = r.get<double>();
+    check_finite(file, "plate displacement", {sim.plate_travel_.displacement.x, sim.plate_travel_.displacement.y});
+    if (!std::isfinite(sim.plate_travel_.travel) || sim.plate_travel_.travel < 0.0)
+      corrupt_checkpoint(file, "plate travel", fmt::format("{} m", sim.plate_travel_.travel));
     check_clock(sim, ck);
     sim.tested_step_ = -1;  // the next step makes its own rebuild test
     sim.travel_ = Simulation::kTravelUnknown;  // not saved: the exact rebuild test until the next rebuild
     sim.forces_step_ = sim.step_;  // the contact resultants were saved with the step (write_state)
     if (r.pos != r.in.size()) throw CaseError(fmt::format("{}: corrupt checkpoint (trailing state bytes)", file));
-    if (other_case) start_other_case(sim, file);
+    if (other_case) start_other_case(sim, file, the_case);
     // derived from the slot lists (not saved): made once they are final, since another case may drop wall
     // slots (the sweep's shares and the contact index would otherwise still count them)
     sim.index_contacts();
@@ -257,7 +273,7 @@ struct SimulationAccess {
     if (sim.rebuilds_ < 0) corrupt_checkpoint(ck.file, "rebuilds", fmt::format("{} is negative", sim.rebuilds_));
   }
   // Another case: each slot takes the new case's law of its material pair, of the same kind.
-  static void start_other_case(Simulation& sim, const std::string& file) {
+  static void start_other_case(Simulation& sim, const std::string& file, const std::string& the_case) {
     const Elements& e = sim.m_.elements;
     const Model& m = sim.m_;
     // A wall the new case opens (a silo's slit in discharge) has no contacts: they are dropped.
@@ -270,8 +286,9 @@ struct SimulationAccess {
       const SlotPair p = sim.linear_pairs_.pair[k];
       const std::int32_t law = m.law_index(e.material[p.i], e.material[p.j]);
       if (law < 0 || m.laws[static_cast<std::size_t>(law)].kind != LawKind::linear)
-        throw CaseError(fmt::format("{}: restart: element {} and element {}: the new case has no linear contact law for this pair",
-                                    file, sim.id_of(p.i), sim.id_of(p.j)));
+        throw CaseError(fmt::format("{}: restart: element {} and element {}: {} has no linear contact law between \"{}\" and \"{}\"",
+                                    file, sim.id_of(p.i), sim.id_of(p.j), the_case, material_name(m, e.material[p.i]),
+                                    material_name(m, e.material[p.j])));
       sim.linear_pairs_.law[k] = law;
     }
     auto relaw = [&](auto& slots, bool wall, LawKind kind) {
@@ -279,8 +296,10 @@ struct SimulationAccess {
         const std::int32_t mj = wall ? m.walls[s.j].material : e.material[s.j];
         const std::int32_t law = m.law_index(e.material[s.i], mj);
         if (law < 0 || m.laws[static_cast<std::size_t>(law)].kind != kind)
-          throw CaseError(fmt::format("{}: restart: element {} and {} {}: the new case has no {} contact law for this pair", file, sim.id_of(s.i),
-                                      wall ? "wall" : "element", wall ? s.j : sim.id_of(s.j), kind == LawKind::linear ? "linear" : "face"));
+          throw CaseError(fmt::format("{}: restart: element {} and {} {}: {} has no {} contact law between \"{}\" and \"{}\"", file,
+                                      sim.id_of(s.i), wall ? "wall" : "element", wall ? s.j : sim.id_of(s.j), the_case,
+                                      kind == LawKind::linear ? "linear" : "face", material_name(m, e.material[s.i]),
+                                      material_name(m, mj)));
         s.law = law;
       }
     };
@@ -367,11 +386,13 @@ Checkpoint parse_checkpoint(std::string_view bytes, const std::string& what) {
   return ck;
 }
 
-void restore_simulation(Simulation& sim, const Checkpoint& ck, bool other_case) {
-  if (ck.dt != sim.dt())
-    throw CaseError(fmt::format("{}: restart: the checkpoint was written with dt = {:.17g} s, the case has dt = {:.17g} s", ck.file, ck.dt,
-                                sim.dt()));
-  SimulationAccess::read(sim, ck, other_case);
+void restore_simulation(Simulation& sim, const Checkpoint& ck, bool other_case, const RestartInto& into) {
+  if (ck.dt != sim.dt()) {
+    const std::string at = !into.dt_location.empty() ? into.dt_location : into.case_file;
+    throw CaseError(fmt::format("{}: restart: the checkpoint was written with dt = {:.17g} s, {} has dt = {:.17g} s{}", ck.file, ck.dt,
+                                case_named(into), sim.dt(), at.empty() ? "" : fmt::format(" ({}: numerics.dt)", at)));
+  }
+  SimulationAccess::read(sim, ck, other_case, into);
 }
 
 }  // namespace dem

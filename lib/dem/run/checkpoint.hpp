@@ -23,8 +23,9 @@
 
 namespace dem {
 
-inline constexpr std::uint32_t kCheckpointVersion = 4;  // 2: the run loop's discharge state; 3: element ids (order);
-                                                          // 4: linear pair slots without ContactForce::opened
+inline constexpr std::uint32_t kCheckpointVersion = 5;  // 2: the run loop's discharge state; 3: element ids (order);
+                                                          // 4: linear pair slots without ContactForce::opened;
+                                                          // 5: the base plate's displacement and travel
 
 struct Checkpoint {
   std::string file;          // the checkpoint file it was read from (what errors name)
@@ -59,7 +60,13 @@ std::uint64_t checkpoint_checksum(std::string_view bytes);
 /// match; each contact slot takes the new case's law for its material pair (the constants fixed when
 /// the contact formed are kept), masses and laws are the new case's. Throws CaseError if they do not
 /// match.
-void restore_simulation(Simulation& sim, const Checkpoint& ck, bool other_case);
+/// `into` names the case restarted (its file, where numerics.dt is given): a count, Δt or law that does not
+/// match names the checkpoint file and the case's file (file:line of the key at fault where there is one).
+struct RestartInto {
+  std::string case_file;    // the case file restarted from the checkpoint ("" : not named)
+  std::string dt_location;  // "file:line" (or "--set …") of its numerics.dt; "" : the default
+};
+void restore_simulation(Simulation& sim, const Checkpoint& ck, bool other_case, const RestartInto& into = {});
 
 /// The serialised state alone (tests compare two states bit for bit with it).
 std::string simulation_state(const Simulation& sim);

@@ -107,7 +107,8 @@ QuantityFn after_peak_quantity(const Case& c, const Model& m) {
     try {
       peak_quantity = compile_quantity(c.stop.after_peak_quantity, m);
     } catch (const std::invalid_argument& e) {
-      throw CaseError(fmt::format("{}: stop.after_peak.quantity: {}", c.path.string(), e.what()));
+      throw CaseError(fmt::format("{}: stop.after_peak.quantity: {}",
+                                  c.stop.after_peak_location.empty() ? c.path.string() : c.stop.after_peak_location, e.what()));
     }
   }
   return peak_quantity;
@@ -116,7 +117,7 @@ QuantityFn after_peak_quantity(const Case& c, const Model& m) {
 /// The loop's state at the start: the blow-up bound's zero of potential energy, the discharge clock;
 /// after a restart the Simulation's state and (same case) the loop's from the checkpoint.
 LoopState start_loop(Simulation& sim, const std::optional<Checkpoint>& restart, const RunOptions& opt,
-                     std::vector<ProbeState>& probes) {
+                     std::vector<ProbeState>& probes, const RestartInto& into) {
   const Model& m = std::as_const(sim).model();
   LoopState loop;
   loop.energy_limit = m.numerics.energy_limit;
@@ -125,7 +126,7 @@ LoopState start_loop(Simulation& sim, const std::optional<Checkpoint>& restart, 
   // window).
   loop.last_release = sim.time();
   if (restart) {
-    restore_simulation(sim, *restart, opt.restart_other_case);
+    restore_simulation(sim, *restart, opt.restart_other_case, into);
     loop.last_release = sim.time();  // a discharge from a saved state: its clock starts at the state's time
     if (opt.restart_other_case) loop.potential0 = sim.energies().potential;
     else restore_loop_state(restart->loop, loop, probes, restart->file);
@@ -400,7 +401,9 @@ void check_outputs(const Case& c) {
     if (!p.against.empty()) compile_located(p.against, at, fmt::format("probe.{}.against", k), c.model);
   }
   if (!c.stop.after_peak_quantity.empty())
-    compile_located(c.stop.after_peak_quantity, c.path.string(), "stop.after_peak.quantity", c.model);
+    compile_located(c.stop.after_peak_quantity,
+                    c.stop.after_peak_location.empty() ? c.path.string() : c.stop.after_peak_location,
+                    "stop.after_peak.quantity", c.model);
 }
 
 /// The run once its output folder is open: the loop, the last outputs and the summary.
@@ -476,7 +479,7 @@ RunResult run_case(Case c, const RunOptions& opt) {
   // - kinematics: no element moves more than numerics.max_step_fraction × its radius in one step.
   const double ratio = m.numerics.dt / limit;
   const double energy_factor = ratio < 1.0 ? std::max(4.0, 2.0 / (1.0 - ratio * ratio)) : 4.0;
-  LoopState loop = start_loop(sim, restart, opt, probes);
+  LoopState loop = start_loop(sim, restart, opt, probes, {c.path.string(), c.dt_location});
 
   RunOutputs out(c, opt, std::move(series));
   out.open(sim, total_steps);

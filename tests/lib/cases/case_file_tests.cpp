@@ -171,8 +171,21 @@ motion = "fixed"
 )";
   const auto v = variant("fixed_overlap.toml", "# Unit-test case", "# Unit-test case", fixed);
   const auto msg = check_error(v.path);
-  CHECK_THAT(msg, StartsWith(v.path + ": elements 1 and 2 overlap by 0.005 m"));
+  // at the line of the second element's table, naming the first one's (the minimal case's own element is element 0)
+  const std::string text = test::slurp(v.path);
+  const auto line_of_nth_element = [&](int nth) {
+    std::size_t at = 0;
+    for (int k = 0; k <= nth; ++k) at = text.find("[[element]]", k == 0 ? 0 : at + 1);
+    REQUIRE(at != std::string::npos);
+    return std::to_string(1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+  };
+  CHECK_THAT(msg, StartsWith(v.path + ":" + line_of_nth_element(2) + ": element.2: elements 1 and 2 overlap by 0.005 m at the start "
+                             "(element 1: element.1, " + v.path + ":" + line_of_nth_element(1) + ")"));
   CHECK_THAT(msg, Contains("overlapping fixed geometry"));
+  // an element sunk into a wall: the line of its table
+  const auto sunk = variant("sunk.toml", "position = [\"0 m\", \"1 cm\"]", "position = [\"0 m\", \"0.5 cm\"]");
+  CHECK_THAT(check_error(sunk.path), StartsWith(sunk.path + ":" + std::to_string(sunk.line - 3) +
+                                                ": element.0: element 0 overlaps wall \"floor\" by 0.005 m at the start"));
   // the same two elements free may touch slightly, but 0.5 cm is 50 % of a radius
   const auto v2 = variant("free_overlap.toml", "# Unit-test case", "# Unit-test case", [&] {
     std::string s = fixed;

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <string_view>
 
 #include "dem/run/checkpoint.hpp"
 #include "dem/run/run.hpp"
@@ -19,6 +20,7 @@
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
 
 namespace {
 
@@ -52,8 +54,8 @@ struct StateLayout {
     face_walls = u64_at(s, at), at += 8, face_wall0 = at, at += kFace * face_walls;
     x_ref = at + 8;
     at += 2 * (8 + 8 * n) + 8 + 16 * walls;
-    clock = at;  // skin, time, step, rebuilds, preloading
-    REQUIRE(at + 8 * 4 + 1 == s.size());
+    clock = at;  // skin, time, step, rebuilds, preloading, then the plate's displacement and travel
+    REQUIRE(at + 8 * 4 + 1 + 3 * 8 == s.size());
   }
 };
 
@@ -145,7 +147,8 @@ TEST_CASE("A crafted checkpoint of disks is refused with the file and the field 
       {"active_7", ck.with<std::uint8_t>(at + s.active + 2, 7), "element active[2]"},
       {"wall_nan", ck.with<double>(at + s.wall0 + 16, kNaN), "wall 0 (floor)"},
       {"x_ref_nan", ck.with<double>(at + s.x_ref, kNaN), "reference x[0]"},
-      {"preloading_2", ck.with<std::uint8_t>(ck.loop - 8 - 1, 2), "preloading"},  // the state's last byte
+      {"preloading_2", ck.with<std::uint8_t>(at + s.clock + 4 * 8, 2), "preloading"},
+      {"plate_travel", ck.with<double>(at + s.clock + 4 * 8 + 1 + 16, -1.0), "plate travel"},  // the state's last 8 bytes
       {"state_clock", ck.with<double>(at + s.clock + 8, kNaN), "clock"},
       {"header_time", ck.with<double>(ck.time(), kNaN), "time"},
       {"header_step", ck.with<std::int64_t>(ck.step(), -5), "step"},
@@ -194,14 +197,54 @@ TEST_CASE("A crafted checkpoint of bonded PREs is refused with the file and the 
   }
 }
 
-TEST_CASE("A checkpoint that does not fit another case names the checkpoint file", "[outputs][restart][checkpoint]") {
+TEST_CASE("A checkpoint that does not fit another case names the checkpoint file and the case file", "[outputs][restart][checkpoint]") {
   const dem::Case disks = dem::read_case(test::source("tests/lib/fixtures/restart_disks.toml"));
   const fs::path dir = test::fresh_dir("dem2d_unit_checkpoint_checks", "other");
   const fs::path ck = disks_checkpoint(disks, dir);
-  const dem::Case belt = dem::read_case(test::source("tests/lib/fixtures/restart_belt.toml"));
-  CHECK_THAT(restart_error(belt, ck, dir / "b", true), Contains(ck.string()) && Contains("elements"));
-  const dem::Case finer = dem::read_case(test::source("tests/lib/fixtures/restart_disks.toml"), {"numerics.dt=5e-6"});
-  CHECK_THAT(restart_error(finer, ck, dir / "c", true), Contains(ck.string()) && Contains("dt ="));
+  // counts: the checkpoint and the case file, each with its number
+  const std::string belt_file = test::source("tests/lib/fixtures/restart_belt.toml").string();
+  const dem::Case belt = dem::read_case(belt_file);
+  CHECK_THAT(restart_error(belt, ck, dir / "b", true),
+             StartsWith(ck.string() + ": restart: the checkpoint has ") && Contains("elements, the case " + belt_file + " has 1"));
+  // dt: the line of numerics.dt in the case file (line 53 of a copy of restart_disks.toml), or the --set
+  std::string text = test::slurp(test::source("tests/lib/fixtures/restart_disks.toml"));
+  REQUIRE(text.find("dt = 1e-5\n") != std::string::npos);
+  const fs::path finer_file = write(dir, "finer.toml", text.replace(text.find("dt = 1e-5\n"), 10, "dt = 5e-6\n"));
+  const std::string finer_error = restart_error(dem::read_case(finer_file), ck, dir / "c", true);
+  CHECK_THAT(finer_error, StartsWith(ck.string() + ": restart: the checkpoint was written with dt = 1.0000000000000001e-05 s"));
+  CHECK_THAT(finer_error, Contains("the case " + finer_file.string() + " has dt = 5.0000000000000004e-06 s (" +
+                                   finer_file.string() + ":53: numerics.dt)"));
+  const dem::Case finer_set = dem::read_case(test::source("tests/lib/fixtures/restart_disks.toml"), {"numerics.dt=5e-6"});
+  CHECK_THAT(restart_error(finer_set, ck, dir / "d", true), Contains("(--set numerics.dt=5e-6: numerics.dt)"));
+  // laws: the case file and the two materials
   const dem::Case faces = dem::read_case(test::source("tests/lib/fixtures/restart_disks.toml"), {"contact.0.law=\"face\""});
-  CHECK_THAT(restart_error(faces, ck, dir / "d", true), Contains(ck.string()) && Contains("no linear contact law"));
+  CHECK_THAT(restart_error(faces, ck, dir / "e", true),
+             StartsWith(ck.string() + ": restart: element ") &&
+                 Contains("the case " + faces.path.string() + " has no linear contact law between \"") );
+}
+
+TEST_CASE("A corrupt checkpoint state names the checkpoint file and never the case it was written for", "[outputs][restart][checkpoint]") {
+  const dem::Case disks = dem::read_case(test::source("tests/lib/fixtures/restart_disks.toml"));
+  const fs::path dir = test::fresh_dir("dem2d_unit_checkpoint_checks", "corrupt_names");
+  const fs::path ck = disks_checkpoint(disks, dir);
+  const CheckpointBytes cb(ck);
+  const StateLayout layout(dem::read_checkpoint(ck).state);
+  // the restart is made from a copy in another folder: the case path stored inside (the fixture) is not it
+  const fs::path crafted = write(dir, "crafted.bin", cb.with(cb.state + layout.x, kNaN));
+  const std::string msg = restart_error(disks, crafted, dir / "r");
+  CHECK_THAT(msg, StartsWith(crafted.string() + ": "));
+  CHECK_THAT(msg, !Contains(dem::read_checkpoint(ck).case_path));
+}
+
+TEST_CASE("A checkpoint of another format version is refused with both versions named", "[outputs][restart][checkpoint]") {
+  const dem::Case disks = dem::read_case(test::source("tests/lib/fixtures/restart_disks.toml"));
+  const fs::path dir = test::fresh_dir("dem2d_unit_checkpoint_checks", "version");
+  const fs::path ck = disks_checkpoint(disks, dir);
+  const CheckpointBytes cb(ck);
+  const std::size_t version_at = std::string_view("DEM2D-CHECKPOINT\n").size();
+  REQUIRE(u64_at(cb.bytes, version_at) % (1ull << 32) == dem::kCheckpointVersion);
+  const fs::path older = write(dir, "older.bin", cb.with<std::uint32_t>(version_at, dem::kCheckpointVersion - 1));
+  CHECK_THAT(restart_error(disks, older, dir / "r"),
+             StartsWith(older.string() + ": checkpoint format version " + std::to_string(dem::kCheckpointVersion - 1) +
+                        ", this dem2d reads version " + std::to_string(dem::kCheckpointVersion)));
 }

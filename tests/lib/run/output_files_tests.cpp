@@ -72,7 +72,8 @@ struct RestartCase {
 TEST_CASE("A restart from a checkpoint continues bit for bit like the uninterrupted run", "[outputs][restart]") {
   const RestartCase rc = GENERATE(RestartCase{"tests/lib/fixtures/restart_disks.toml", 5400, 200},
                                   RestartCase{"tests/lib/fixtures/restart_pre_break.toml", 200, 20},
-                                  RestartCase{"tests/lib/fixtures/restart_belt.toml", 700, 100});
+                                  RestartCase{"tests/lib/fixtures/restart_belt.toml", 700, 100},
+                                  RestartCase{"tests/lib/fixtures/restart_plate.toml", 1500, 100});
   INFO(rc.file);
   const dem::Case c = dem::read_case(source(rc.file));
   const std::string stem = fs::path(rc.file).stem().string();

@@ -16,6 +16,7 @@
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
 
 namespace {
 
@@ -165,7 +166,17 @@ TEST_CASE("The after-peak criterion stops a run once the force has dropped by th
   CHECK(r3.status == "completed");
   // Wrong input is refused before anything runs.
   CHECK_THROWS_WITH(run(c, out, {"stop.after_peak.drop=1.5"}), Contains("stop.after_peak") && Contains("drop"));
-  CHECK_THROWS_WITH(run(c, out, {"stop.after_peak.quantity=e7.fy"}), Contains("stop.after_peak.quantity"));
+  CHECK_THROWS_WITH(run(c, out, {"stop.after_peak.quantity=e7.fy"}),
+                    StartsWith("--set stop.after_peak.quantity=e7.fy: stop.after_peak.quantity: "));
+  // ... at its line when the case file names an element it does not have
+  std::string text = slurp(source(c));
+  REQUIRE(text.find("quantity = \"e0.fn.floor\", drop") != std::string::npos);
+  const fs::path bad = test::write_temp("after_peak_e7.toml", text.replace(text.find("quantity = \"e0.fn.floor\", drop"), 30,
+                                                                           "quantity = \"e7.fy\", drop"));
+  dem::RunOptions o;
+  o.out_dir = out;
+  CHECK_THROWS_WITH(dem::run_case(dem::read_case(bad), o), StartsWith(bad.string() + ":57: stop.after_peak.quantity: "));
+  CHECK_THROWS_WITH(dem::check_outputs(dem::read_case(bad)), StartsWith(bad.string() + ":57: stop.after_peak.quantity: "));
 }
 
 TEST_CASE("A slope probe against another quantity gives dq/dx", "[run]") {
