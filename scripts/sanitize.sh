@@ -16,7 +16,7 @@ if [ ! -f build-san/CMakeCache.txt ]; then
     || { cat $log; exit 1; }
 fi
 start=$(date +%s)
-cmake --build build-san -j"$jobs" --target unit_lib unit_reference unit_engine fuzz_case fuzz_override fuzz_checkpoint fuzz_study fuzz_sensitivity fuzz_result dem2d dem2d_alternate dem2d_divisible \
+cmake --build build-san -j"$jobs" --target unit_lib unit_reference unit_engine fuzz_case fuzz_case_read fuzz_override fuzz_checkpoint fuzz_study fuzz_sensitivity fuzz_result dem2d dem2d_alternate dem2d_divisible \
   >> $log 2>&1 || { tail -50 $log; exit 1; }
 echo "sanitize: build-san built in $(( $(date +%s) - start )) s"
 ctest --test-dir build-san -L unit -j"$jobs" --output-on-failure
