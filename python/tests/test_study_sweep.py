@@ -26,19 +26,20 @@ def same_results(cli, module, result):
     return a
 
 
-def test_study_as_the_command_line(root, exe, scratch):
-    study = root / "verification/rest_on_wall/study.toml"
-    subprocess.run([exe, "study", str(study), "--out", str(scratch / "cli"), "--fresh"], check=True,
+def cli_and_module(exe, scratch, command, path):
+    """`dem2d study|sweep PATH` and dem2d.study|sweep(PATH), fresh, into scratch/cli and scratch/module:
+    the module's dict and the CLI's result.json (the same files, compared by same_results)."""
+    subprocess.run([exe, command, str(path), "--out", str(scratch / "cli"), "--fresh"], check=True,
                    capture_output=True)
-    r = dem2d.study(study, out=scratch / "module", jobs=2, fresh=True)
-    a = same_results(scratch / "cli", scratch / "module", r)
+    r = getattr(dem2d, command)(path, out=scratch / "module", jobs=2, fresh=True)
+    return r, same_results(scratch / "cli", scratch / "module", r)
+
+
+def test_study_as_the_command_line(root, exe, scratch):
+    r, a = cli_and_module(exe, scratch, "study", root / "verification/rest_on_wall/study.toml")
     assert r["passed"] and len(a["checks"]) == 2 and all(c["dem"] is not None for c in a["checks"])
 
 
 def test_sweep_as_the_command_line(root, exe, scratch):
-    study = root / "verification/sensitivity_linear_morris/sensitivity.toml"
-    subprocess.run([exe, "sweep", str(study), "--out", str(scratch / "cli"), "--fresh"], check=True,
-                   capture_output=True)
-    r = dem2d.sweep(study, out=scratch / "module", jobs=2, fresh=True)
-    a = same_results(scratch / "cli", scratch / "module", r)
+    r, a = cli_and_module(exe, scratch, "sweep", root / "verification/sensitivity_linear_morris/sensitivity.toml")
     assert r["passed"] and a["checks"]
