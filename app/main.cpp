@@ -97,6 +97,8 @@ int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
     fmt::print("    bonded structure: eigenvalue bound {:.6g} s (lambda_max = {:.6g} 1/s^2, c_max = {:.6g} 1/s at the start); "
                "Gershgorin (row-sum) bound {:.6g} s, {:.3g} x smaller\n",
                b.limit, b.lambda_max, b.c_max, b.limit_gershgorin, b.limit / b.limit_gershgorin);
+  if (b.eigen && b.limit_block > 0.0)
+    fmt::print("    block bound (G5: the bonded block and each unbonded element apart): {:.6g} s\n", b.limit_block);
   if (b.eigen)
     fmt::print("    the start network alone (without the contacts the unbonded elements can still form): {:.6g} s\n",
                b.limit_start);

@@ -310,6 +310,32 @@ std::vector<std::pair<int, int>> wall_sets(const std::vector<const Wall*>& walls
   return out;
 }
 
+/// A second bound on the same maximum (the smaller of the two is taken): the element contacts split by
+/// the partner's class, each class at most as many contacts as it has elements. The contacts of one
+/// class form an arrangement of their own, so the sum over classes of each class's largest arrangement
+/// (the walls added to the class with the most partners) bounds every mixed arrangement; a light disk
+/// among PREs with two stiff steel partners is no longer counted as pressed by six steel ones.
+Arrangement split_by_partner(const std::vector<std::pair<Kind, int>>& by_class, Weights Kind::*field, const Weights& seg,
+                             const Weights& pt, const int counts[3], const std::vector<std::pair<int, int>>& sets,
+                             const double gaps[3][3]) {
+  Arrangement total;
+  if (by_class.size() < 2) {
+    total.value = inf;
+    return total;
+  }
+  std::size_t most = 0;
+  for (std::size_t i = 1; i < by_class.size(); ++i)
+    if (by_class[i].second > by_class[most].second) most = i;
+  for (std::size_t i = 0; i < by_class.size(); ++i) {
+    const bool walls = i == most;
+    const Weights w[3] = {by_class[i].first.*field, walls ? seg : Weights{}, walls ? pt : Weights{}};
+    const int c[3] = {std::min(counts[0], by_class[i].second), walls ? counts[1] : 0, walls ? counts[2] : 0};
+    const Arrangement a = arrangement_max(w, c, sets, gaps);
+    total.value += a.value, total.d += a.d, total.s += a.s, total.p += a.p;
+  }
+  return total;
+}
+
 std::string law_name(const Model& m, std::int32_t law) {
   const std::size_t nm = m.materials.size();
   for (std::size_t a = 0; a < nm; ++a)
@@ -443,6 +469,14 @@ bool has_bonded_free(const Elements& e, const StartNetwork& net, std::size_t mat
   return false;
 }
 
+int count_unbonded_free(const Elements& e, const StartNetwork& net, std::size_t material) {
+  int n = 0;
+  for (std::size_t i = 0; i < e.size(); ++i)
+    if (e.active[i] && e.motion[i] == Motion::free && static_cast<std::size_t>(e.material[i]) == material && !net.bonded[i])
+      ++n;
+  return n;
+}
+
 bool has_unbonded_free(const Elements& e, const StartNetwork& net, std::size_t material) {
   for (std::size_t i = 0; i < e.size(); ++i)
     if (e.active[i] && e.motion[i] == Motion::free && static_cast<std::size_t>(e.material[i]) == material && !net.bonded[i])
@@ -470,6 +504,95 @@ void apply_eigen_bound(const Model& m, const StartNetwork& net, const ClassRates
       net.dofs, net.springs.size(), u.lam, u.c, out.limit_gershgorin);
 }
 
+/// What (G5) needs of one element class, gathered by the row-sum loop.
+struct BlockClass {
+  int unbonded_free = 0;  // free elements not bonded at the start: each a block of its own
+  bool bonded_free = false;
+  int zd = 0;                          // the most element contacts one of its elements can have
+  double limit = inf, limit_s = inf;   // its row-sum limits (the block of an unbonded element)
+  ClassRates walls;                    // a bonded element's wall contacts and extra terms (G4)
+};
+
+/// (G5) A block bound for a bonded structure with unbonded free elements (a load disk): the bonded
+/// free elements form one block L, each unbonded free element u a block of its own. Feingold–Varga:
+///   λ_max ≤ max( λ_max(A_LL) + Σ_u ‖A_Lu‖,  max_u [λ_max(A_uu) + Σ_j ‖A_uj‖] ).
+/// The u rows are the row-sum bounds of u's class. A_LL is the start network with every other body
+/// grounded (their springs act on L alone), plus the wall contacts L can form (G4) and one contact
+/// per possible partner u (at most z_a of them); ‖A_Lu‖ ≤ √(z_u)·b, as each bonded element touches u
+/// at most once and u touches at most z_u of them (‖Σ_c B_c‖² ≤ Σ_c ‖B_c‖² for blocks on disjoint
+/// rows). Unlike (G4)'s Weyl sum, the lattice's and the load disk's largest rates are not added.
+void apply_block_bound(const Model& m, const StartNetwork& net, const std::vector<Stats>& st,
+                       const std::vector<BlockClass>& info, StabilityBound& out) {
+  const std::size_t nm = m.materials.size();
+  int free_unbonded = 0, bonded_count = 0;
+  double limit_u = inf, limit_u_s = inf;
+  for (const BlockClass& c : info) {
+    free_unbonded += c.unbonded_free;
+    if (c.unbonded_free > 0) limit_u = std::min(limit_u, c.limit), limit_u_s = std::min(limit_u_s, c.limit_s);
+  }
+  for (std::size_t i = 0; i < net.bonded.size(); ++i) bonded_count += net.bonded[i] ? 1 : 0;
+  if (free_unbonded == 0) return;  // (G4) is then the same bound
+  ClassRates grown;     // the largest rates any bonded element can add to A_LL's row
+  ClassRates coupling;  // Σ_u ‖A_Lu‖ (lam, c, lam_s, c_s; hopf unused)
+  for (std::size_t u = 0; u < nm; ++u) {
+    if (info[u].unbonded_free == 0) continue;
+    double b[4] = {0, 0, 0, 0};
+    for (std::size_t a = 0; a < nm; ++a) {
+      const std::int32_t law = m.law_of_pair[u * nm + a];
+      if (law < 0 || !info[a].bonded_free) continue;
+      const Kind k = contact_kind(m, law, st[u], &st[a]);
+      b[0] = std::max(b[0], k.k.b), b[1] = std::max(b[1], k.c.b), b[2] = std::max(b[2], k.k_stick.b), b[3] = std::max(b[3], k.c_stick.b);
+    }
+    const double z = std::sqrt(static_cast<double>(std::min(info[u].zd, bonded_count)));
+    coupling.lam += info[u].unbonded_free * z * b[0], coupling.c += info[u].unbonded_free * z * b[1];
+    coupling.lam_s += info[u].unbonded_free * z * b[2], coupling.c_s += info[u].unbonded_free * z * b[3];
+  }
+  for (std::size_t a = 0; a < nm; ++a) {
+    if (!info[a].bonded_free) continue;
+    Kind touch;  // one contact with any unbonded free partner, its whole row share w + b
+    for (std::size_t u = 0; u < nm; ++u)
+      if (const std::int32_t law = m.law_of_pair[a * nm + u]; law >= 0 && info[u].unbonded_free > 0) touch.merge(contact_kind(m, law, st[a], &st[u]));
+    const double n = std::min(info[a].zd, free_unbonded);
+    const ClassRates& w = info[a].walls;
+    grown.add(w.lam + n * (touch.k.w + touch.k.b), w.c + n * (touch.c.w + touch.c.b), std::min(w.hopf, touch.hopf),
+              w.lam_s + n * (touch.k_stick.w + touch.k_stick.b), w.c_s + n * (touch.c_stick.w + touch.c_stick.b),
+              std::min(w.hopf_s, touch.hopf_stick));
+  }
+  const StartNetwork bonded = start_network(m, &net.bonded);
+  const Integrator it = m.numerics.integrator;
+  const double block = std::min(limit_u, eigen_limit(bonded, it, false, grown.lam + coupling.lam, grown.c + coupling.c, grown.hopf));
+  const double block_s = std::min(limit_u_s, eigen_limit(bonded, it, true, grown.lam_s + coupling.lam_s, grown.c_s + coupling.c_s, grown.hopf_s));
+  out.limit_block = block;
+  out.limit = std::max(out.limit, block);
+  out.limit_sticking = std::min(out.limit, std::max(out.limit_sticking, block_s));
+  out.assumptions += fmt::format(
+      "; block bound (G5): the bonded elements as one block ({} DOF, the other bodies grounded, Lanczos) and each of "
+      "the {} unbonded free elements a block of its own (its row sums): {:.6g} s",
+      bonded.dofs, free_unbonded, block);
+}
+
+/// The rates the extra terms (base friction, …) add to the free elements of one class.
+struct ExtraRates {
+  double k = 0.0, c = 0.0, hopf = inf;
+  std::string sources;
+};
+ExtraRates extra_rates(const Elements& e, const std::vector<StabilityTerm>& extra, std::size_t material) {
+  ExtraRates x;
+  for (const StabilityTerm& t : extra) {
+    double tk = 0.0, tc = 0.0;
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      if (!e.active[i] || e.motion[i] != Motion::free || static_cast<std::size_t>(e.material[i]) != material) continue;
+      if (i < t.stiffness.size()) tk = std::max(tk, t.stiffness[i]);
+      if (i < t.damping.size()) tc = std::max(tc, t.damping[i]);
+    }
+    if (tk > 0.0 || tc > 0.0) x.sources += (x.sources.empty() ? "" : ", ") + t.source;
+    x.k += tk;
+    x.c += tc;
+    if (tk > 0.0) x.hopf = std::min(x.hopf, t.hopf_ratio);
+  }
+  return x;
+}
+
 }  // namespace
 
 StabilityBound assembly_stability_bound(const Model& m, const std::vector<StabilityTerm>& extra) {
@@ -483,24 +606,26 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
       "fewer elements; 2 asin((1-e)rho/(r+rho)) apart, overlaps e <= {:.0f} % of a radius), a segment wall's "
       "contact blocks the half-plane behind it, a point wall nothing, walls that lie within 2r of each other "
       "may all touch at once; "
-      "worst directions on a 0.5 deg grid (each grid point taking the largest value within a quarter degree); block-Gershgorin bound, exact for one contact; shear springs of "
-      "Coulomb contacts counted only in the sticking limit",
+      "worst directions on a 0.5 deg grid (each grid point taking the largest value within a quarter degree); "
+      "block-Gershgorin bound, exact for one contact; shear springs of Coulomb contacts counted only in the sticking limit",
       100 * kOverlap);
   bool first = true;
   const StartNetwork net = start_network_if_bonded(m);
   ClassRates unbonded;  // the Gershgorin rates of the classes with free elements not bonded at the start
+  std::vector<BlockClass> info(nm);  // for the block bound (G5)
   for (std::size_t a = 0; a < nm; ++a) {
     const Stats& s = st[a];
     if (s.free_count == 0) continue;
-    // element partners
-    Kind elem;
+    Kind elem;  // element partners
+    std::vector<std::pair<Kind, int>> by_class;  // per partner class: its contact kind, how many partners
     double rho_min = inf;
     int partners = 0;
     for (std::size_t b = 0; b < nm; ++b) {
       const std::int32_t law = m.law_of_pair[a * nm + b];
       const int others = st[b].count - (a == b ? 1 : 0);
       if (law < 0 || others <= 0) continue;
-      elem.merge(contact_kind(m, law, s, &st[b]));
+      by_class.emplace_back(contact_kind(m, law, s, &st[b]), others);
+      elem.merge(by_class.back().first);
       rho_min = std::min(rho_min, st[b].r_min);
       partners += others;
     }
@@ -546,32 +671,25 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
     const double gaps[3][3] = {{gap_dd, gap_sd, 0.0}, {gap_sd, 0.0, 0.0}, {0.0, 0.0, 0.0}};
     auto run = [&](Weights Kind::*field) {
       const Weights w[3] = {elem.*field, seg.*field, pt.*field};
-      return arrangement_max(w, counts, sets, gaps);
+      const Arrangement merged = arrangement_max(w, counts, sets, gaps);
+      const Arrangement split = split_by_partner(by_class, field, seg.*field, pt.*field, counts, sets, gaps);
+      return split.value < merged.value ? split : merged;
     };
     // the sticking weights equal the slipping ones when no Coulomb shear spring is involved (face
     // laws, K_s = 0): the arrangement search is then not repeated
     auto same = [&](Weights Kind::*a, Weights Kind::*b) {
-      for (const Kind* k : {&elem, &seg, &pt})
+      std::vector<const Kind*> kinds{&elem, &seg, &pt};
+      for (const auto& [k, n] : by_class) kinds.push_back(&k);
+      for (const Kind* k : kinds)
         if ((k->*a).w != (k->*b).w || (k->*a).b != (k->*b).b) return false;
       return true;
     };
     const Arrangement ak = run(&Kind::k), ac = run(&Kind::c);
     const Arrangement aks = same(&Kind::k, &Kind::k_stick) ? ak : run(&Kind::k_stick);
     const Arrangement acs = same(&Kind::c, &Kind::c_stick) ? ac : run(&Kind::c_stick);
-    double xk = 0.0, xc = 0.0, xhopf = inf;
-    std::string xsrc;
-    for (const StabilityTerm& t : extra) {
-      double tk = 0.0, tc = 0.0;
-      for (std::size_t i = 0; i < e.size(); ++i) {
-        if (!e.active[i] || e.motion[i] != Motion::free || static_cast<std::size_t>(e.material[i]) != a) continue;
-        if (i < t.stiffness.size()) tk = std::max(tk, t.stiffness[i]);
-        if (i < t.damping.size()) tc = std::max(tc, t.damping[i]);
-      }
-      if (tk > 0.0 || tc > 0.0) xsrc += (xsrc.empty() ? "" : ", ") + t.source;
-      xk += tk;
-      xc += tc;
-      if (tk > 0.0) xhopf = std::min(xhopf, t.hopf_ratio);
-    }
+    const ExtraRates x = extra_rates(e, extra, a);
+    const double xk = x.k, xc = x.c, xhopf = x.hopf;
+    const std::string& xsrc = x.sources;
     const double hopf = std::min({elem.present ? elem.hopf : inf, seg.present ? seg.hopf : inf, pt.present ? pt.hopf : inf, xhopf});
     const double hopf_s = std::min({elem.present ? elem.hopf_stick : inf, seg.present ? seg.hopf_stick : inf,
                                     pt.present ? pt.hopf_stick : inf, xhopf});
@@ -584,8 +702,12 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
       out.law = "a non-finite stiffness, damping or mass";
       return out;
     }
-    if (net.any_bond && has_unbonded_free(e, net, a))
+    info[a].zd = zd;
+    if (net.any_bond && has_unbonded_free(e, net, a)) {
       unbonded.add(lam, c, hopf, aks.value + xk, acs.value + xc, hopf_s);
+      info[a].unbonded_free = count_unbonded_free(e, net, a);
+      info[a].limit = limit, info[a].limit_s = limit_s;
+    }
     if (net.any_bond && has_bonded_free(e, net, a)) {
       // bonded elements: the wall contacts they can still form and the extra terms (base friction), (G4)
       const int wall_counts[3] = {0, max_seg, max_pt};
@@ -593,8 +715,10 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
         const Weights w[3] = {elem.*field, seg.*field, pt.*field};
         return arrangement_max(w, wall_counts, sets, gaps).value;
       };
-      unbonded.add(walls_only(&Kind::k) + xk, walls_only(&Kind::c) + xc, hopf, walls_only(&Kind::k_stick) + xk,
-                   walls_only(&Kind::c_stick) + xc, hopf_s);
+      info[a].bonded_free = true;
+      info[a].walls.add(walls_only(&Kind::k) + xk, walls_only(&Kind::c) + xc, hopf, walls_only(&Kind::k_stick) + xk,
+                        walls_only(&Kind::c_stick) + xc, hopf_s);
+      unbonded.add(info[a].walls.lam, info[a].walls.c, hopf, info[a].walls.lam_s, info[a].walls.c_s, hopf_s);
     }
     out.limit_sticking = std::min(out.limit_sticking, limit_s);
     if (first || limit < out.limit) {
@@ -618,6 +742,7 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
   out.limit_gershgorin = out.limit;
   out.limit_gershgorin_sticking = out.limit_sticking;
   if (net.any_bond) apply_eigen_bound(m, net, unbonded, out);
+  if (net.any_bond) apply_block_bound(m, net, st, info, out);
   return out;
 }
 

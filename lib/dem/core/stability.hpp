@@ -54,14 +54,16 @@ struct StabilityBound {
   double stiffness_rate = 0.0;  // λ of the setting element [1/s²]
   double damping_rate = 0.0;    // c of the setting element [1/s]
   std::string assumptions;      // one paragraph, printed by `dem2d check`
-  // Bonded structures (stability_eigen.hpp, docs/model.md (G1)–(G4)): `limit` is then the eigenvalue
-  // bound of the start network plus the Gershgorin rates of the unbonded free elements' classes;
-  // the row-sum (Gershgorin) limit alone is kept here. Without bonds both equal `limit`.
+  // Bonded structures (stability_eigen.hpp, docs/model.md (G1)–(G5)): `limit` is then the largest of
+  // the row-sum limit, the eigenvalue bound of the start network plus the Gershgorin rates of the
+  // unbonded free elements' classes (G4) and the block bound (G5); the row-sum (Gershgorin) limit alone
+  // is kept here. Without bonds both equal `limit`.
   double limit_gershgorin = 0.0;           // [s]
   double limit_gershgorin_sticking = 0.0;  // [s]
   bool eigen = false;                      // `limit` is the eigenvalue bound
   double lambda_max = 0.0, c_max = 0.0;    // λ_max of the start network's mass-normalised K [1/s²], C [1/s]
   double limit_start = 0.0;                // [s] the start network alone, without the contacts that can form (G3)
+  double limit_block = 0.0;                // [s] the block bound (G5); 0 when it does not apply
 };
 
 /// The Δt limit of every contact the case CAN form (stability.cpp states the bound and its

@@ -79,7 +79,7 @@ void add_contact(const Model& m, const std::vector<int>& dof, const PairLaw& law
 
 }  // namespace
 
-StartNetwork start_network(const Model& m) {
+StartNetwork start_network(const Model& m, const std::vector<std::uint8_t>* only) {
   const Elements& e = m.elements;
   const std::size_t n = e.size();
   StartNetwork net;
@@ -87,7 +87,7 @@ StartNetwork start_network(const Model& m) {
   net.bonded.assign(n, 0);
   std::vector<int> dof(n, -1);
   for (std::size_t i = 0; i < n; ++i)
-    if (e.active[i] && e.motion[i] == Motion::free) dof[i] = 3 * (net.dofs++);
+    if (e.active[i] && e.motion[i] == Motion::free && (only == nullptr || (*only)[i])) dof[i] = 3 * (net.dofs++);
   net.dofs *= 3;
   // bonded at the start as face_geometry.hpp has it: a face law bonding at the start, or one lattice group
   auto bonds = [&](const PairLaw& law, std::size_t i, std::int64_t j) {

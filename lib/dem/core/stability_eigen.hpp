@@ -1,6 +1,6 @@
 #pragma once
 // The time-step guard of a bonded structure from the largest eigenvalue of its assembled stiffness
-// and damping (docs/model.md §1 "Time step of a bonded structure", G1–G4); the Gershgorin guard of
+// and damping (docs/model.md §1 "Time step of a bonded structure", G1–G5); the Gershgorin guard of
 // stability.hpp stays the bound for everything that is not bonded at the start (a silo's disks).
 #include <cstdint>
 #include <vector>
@@ -28,7 +28,9 @@ struct StartNetwork {
   double hopf = 0.0;                 // smallest η/K over the springs (K19's Hopf branch), sliding
   double hopf_stick = 0.0;           // the same with the Coulomb shear springs
 };
-StartNetwork start_network(const Model& m);
+/// `only` (optional, per element): the free elements that keep their degrees of freedom; the others
+/// are ground, their springs acting on their partners alone (the bonded block of (G5)).
+StartNetwork start_network(const Model& m, const std::vector<std::uint8_t>* only = nullptr);
 
 /// λ_max of Σ (Δt² k + 2Δt η) b bᵀ (G2) over the springs (Coulomb shear springs only if `sticking`),
 /// by Lanczos with full reorthogonalisation, plus its residual bound (an upper estimate).
