@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <mutex>
 #include <numbers>
+#include <string>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -160,7 +164,7 @@ struct Arrangement {
 /// equal-valued image of every arrangement. Since w ≥ 0, f_t(p) ≤ f_t(s0) there, and no arrangement
 /// from s0 can exceed B(s0) = Σ_t max_count[t]·f_t(s0) + the point walls: B falls with s0, and the
 /// search stops when B(s0) ≤ the best found (it cannot beat it, ties included).
-Arrangement arrangement_max(const Weights wt[3], const int max_count[3], const std::vector<std::pair<int, int>>& wall_sets,
+Arrangement arrangement_search(const Weights wt[3], const int max_count[3], const std::vector<std::pair<int, int>>& wall_sets,
                             const double gaps[3][3]) {
   // Point walls have no gap to anything, so they do not constrain the others: each sits at the
   // direction of the largest value (w + b) and is added to the arrangement of the element and segment
@@ -255,6 +259,30 @@ Arrangement arrangement_max(const Weights wt[3], const int max_count[3], const s
     }
   }
   return out;
+}
+
+/// arrangement_search with its answers kept: the search is a pure function of its arguments and takes
+/// most of a check, and a study's runs, a sweep's and the fuzzer's inputs ask for the same classes again
+/// and again. The key is the arguments' exact bits, so a kept answer is the one the search would give.
+Arrangement arrangement_max(const Weights wt[3], const int max_count[3], const std::vector<std::pair<int, int>>& wall_sets,
+                            const double gaps[3][3]) {
+  std::string key(sizeof(Weights) * 3 + sizeof(int) * 3 + sizeof(double) * 9, '\0');
+  char* k = key.data();
+  std::memcpy(k, wt, sizeof(Weights) * 3), k += sizeof(Weights) * 3;
+  std::memcpy(k, max_count, sizeof(int) * 3), k += sizeof(int) * 3;
+  std::memcpy(k, gaps, sizeof(double) * 9);
+  for (const auto& [ws, wp] : wall_sets) key.append(reinterpret_cast<const char*>(&ws), sizeof ws).append(reinterpret_cast<const char*>(&wp), sizeof wp);
+  static std::mutex mutex;
+  static std::unordered_map<std::string, Arrangement> kept;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (const auto it = kept.find(key); it != kept.end()) return it->second;
+  }
+  const Arrangement a = arrangement_search(wt, max_count, wall_sets, gaps);
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (kept.size() >= 4096) kept.clear();  // bounded memory
+  kept.emplace(std::move(key), a);
+  return a;
 }
 
 double segment_distance(const Wall& a, const Wall& b) {
