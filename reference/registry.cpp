@@ -19,6 +19,7 @@
 #include "ref/impact.hpp"
 #include "ref/lattice_beam.hpp"
 #include "ref/oscillator.hpp"
+#include "ref/pre_time_step.hpp"
 #include "ref/require.hpp"
 #include "ref/resting_overlap.hpp"
 #include "ref/silo.hpp"
@@ -206,6 +207,11 @@ std::vector<Entry> contact_entries() {
       {argument::mass, argument::stiffness, argument::damping},
       "s"},
      [](const Args& a) { return stability_limit_time_step(Scheme::K19, a.oscillator()); }},
+    {{"matsui.pair_time_step",
+      "Matsui's dt < h_n sqrt(m/k) for one PRE contact, k the whole face's normal stiffness N K_n (M26)",
+      {argument::zeta, argument::mass, argument::stiffness},
+      "s"},
+     [](const Args& a) { return matsui_time_step(a("zeta"), a("m"), a("K")); }},
   };
 }
 
