@@ -13,11 +13,13 @@
 #include "ref/base_friction_travel.hpp"
 #include "ref/beam.hpp"
 #include "ref/block_on_incline.hpp"
+#include "ref/disk_on_slope.hpp"
 #include "ref/elastic_contact_2d.hpp"
 #include "ref/free_fall.hpp"
 #include "ref/impact.hpp"
 #include "ref/lattice_beam.hpp"
 #include "ref/oscillator.hpp"
+#include "ref/pre_time_step.hpp"
 #include "ref/require.hpp"
 #include "ref/resting_overlap.hpp"
 #include "ref/silo.hpp"
@@ -205,6 +207,11 @@ std::vector<Entry> contact_entries() {
       {argument::mass, argument::stiffness, argument::damping},
       "s"},
      [](const Args& a) { return stability_limit_time_step(Scheme::K19, a.oscillator()); }},
+    {{"matsui.pair_time_step",
+      "Matsui's dt < h_n sqrt(m/k) for one PRE contact, k the whole face's normal stiffness N K_n (M26)",
+      {argument::zeta, argument::mass, argument::stiffness},
+      "s"},
+     [](const Args& a) { return matsui_time_step(a("zeta"), a("m"), a("K")); }},
   };
 }
 
@@ -479,11 +486,46 @@ std::vector<Entry> exact_entries() {
   };
 }
 
+/// The arguments of the disk-on-slope solvers (ref/disk_on_slope.hpp).
+std::vector<SolverArgument> slope_arguments() {
+  return {argument::mass, {"kn", "N/m", "normal stiffness K_n of the wall contact"}, {"s", "1", "K_s/K_n"}, argument::zeta,
+          argument::slope, {"phi", "rad", "friction angle, mu = tan phi"}, argument::gravity, argument::time};
+}
+
+DiskOnSlope disk_of(const Args& a) {
+  return {.m = a("m"), .kn = a("kn"), .s = a("s"), .zeta = a("zeta"), .alpha = a("alpha"), .phi = a("phi"), .g = a("g")};
+}
+
+/// A disk released on a slope (ref/disk_on_slope.hpp) and its resting overlap on Kiyama's K_n (K22, K23).
+std::vector<Entry> disk_slope_entries() {
+  const SolverArgument E{"E", "Pa", "Young's modulus"}, nu{"nu", "1", "Poisson's ratio"}, r{"r", "m", "radius in K22.b, K23"},
+      q{"q", "N/m", "line load"}, c{"c", "1", "approach constant of K23"},
+      factor{"factor", "1", "K_n of the contact over K23's (2 for Kiyama's walls)"},
+      g_n{"g", "m/s^2", "gravity across the wall"};
+  return {
+    {{"disk_slope.position", "x(t) of a disk released on slope alpha: sticking on (K_s, eta_s), then Coulomb sliding (ref/disk_on_slope.hpp)",
+      slope_arguments(), "m"},
+     [](const Args& a) { return disk_on_slope(disk_of(a), a("t")).x; }},
+    {{"disk_slope.velocity", "v(t) of the same disk", slope_arguments(), "m/s"},
+     [](const Args& a) { return disk_on_slope(disk_of(a), a("t")).v; }},
+    {{"disk_slope.spin_speed", "r omega(t) of the same disk", slope_arguments(), "m/s"},
+     [](const Args& a) { return disk_on_slope(disk_of(a), a("t")).spin_speed; }},
+    {{"kiyama.rest_overlap", "m g / (factor K_n) with K_n = q/delta of two equal cylinders (K22, K23), per unit thickness",
+      {argument::mass, g_n, E, nu, r, q, c, factor}, "m"},
+     [](const Args& a) {
+       detail::require_positive("kiyama.rest_overlap", "factor", a("factor"));
+       const double k = contact_stiffness({.youngs_modulus = a("E"), .poisson_ratio = a("nu"), .radius1 = a("r"),
+                                           .radius2 = a("r"), .line_load = a("q"), .approach_constant = a("c")});
+       return resting_overlap(a("m"), a("g"), a("factor") * k);
+     }},
+  };
+}
+
 /// Every solver, in a fixed order (the groups above, one after the other).
 const std::vector<Entry>& table() {
   static const std::vector<Entry> entries = [] {
     std::vector<Entry> all;
-    for (auto make : {contact_entries, block_entries, silo_and_beam_entries, silo_fill_entries, exact_entries}) {
+    for (auto make : {contact_entries, block_entries, silo_and_beam_entries, silo_fill_entries, exact_entries, disk_slope_entries}) {
       std::vector<Entry> group = make();
       all.insert(all.end(), std::make_move_iterator(group.begin()), std::make_move_iterator(group.end()));
     }

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -77,6 +78,26 @@ std::string study_list_html(const std::vector<std::string>& folders) {
   return out.empty() ? std::string(missing_value) : out;
 }
 
+/// The rows a study checks, and the unchecked ones that model.md explains.
+std::pair<std::size_t, std::size_t> counts(const std::vector<FeatureRow>& rows) {
+  std::size_t checked = 0, explained = 0;
+  for (const auto& r : rows) {
+    if (!r.checked_by.empty()) ++checked;
+    else if (!r.not_checkable.empty()) ++explained;
+  }
+  return {checked, explained};
+}
+
+const char* row_class(const FeatureRow& r) {
+  if (!r.checked_by.empty()) return "";
+  return r.not_checkable.empty() ? " class=\"unchecked\"" : " class=\"not-checkable\"";
+}
+
+std::string checked_html(const FeatureRow& r) {
+  if (r.checked_by.empty() && !r.not_checkable.empty()) return "<em>not checkable</em>: " + html_escape(r.not_checkable);
+  return study_list_html(r.checked_by);
+}
+
 }  // namespace
 
 std::vector<std::string> cited_labels(const std::string& text) {
@@ -98,27 +119,38 @@ bool covers(const std::string& cited, const std::string& label) {
 }
 
 std::vector<FeatureRow> feature_rows(const std::string& model_md) {
+  enum class Table { none, code, not_checkable };
   std::vector<FeatureRow> rows;
+  std::map<std::string, std::string> reasons;  // equations cell → why no study checks it
   std::istringstream in(model_md);
   std::string line;
-  bool in_table = false;
+  Table table = Table::none;
   while (std::getline(in, line)) {
     if (line.rfind("|", 0) != 0) {
-      in_table = false;
+      table = Table::none;
       continue;
     }
     const auto c = cells(line);
-    if (!in_table) {
-      in_table = c.size() >= 3 && c.front() == "Equations" && c.back() == "Code";
+    if (table == Table::none) {
+      if (c.size() >= 2 && c.front() == "Equations") {
+        if (c.size() >= 3 && c.back() == "Code") table = Table::code;
+        else if (c.back() == not_checkable_header) table = Table::not_checkable;
+      }
       continue;
     }
     if (c.size() < 2 || c[0].find_first_not_of("-: ") == std::string::npos) continue;  // the |---| row
+    if (table == Table::not_checkable) {
+      reasons[c[0]] = c.back();
+      continue;
+    }
     FeatureRow r;
     r.equations = c[0];
     r.what = c[1];
     r.labels = row_labels(c[0]);
     if (!r.labels.empty()) rows.push_back(std::move(r));
   }
+  for (auto& r : rows)
+    if (const auto it = reasons.find(r.equations); it != reasons.end()) r.not_checkable = it->second;
   return rows;
 }
 
@@ -140,29 +172,32 @@ std::vector<FeatureRow> match_features(std::vector<FeatureRow> rows, const std::
 }
 
 std::string features_html(const std::vector<FeatureRow>& rows) {
-  const auto checked = std::count_if(rows.begin(), rows.end(), [](const FeatureRow& r) { return !r.checked_by.empty(); });
+  const auto [checked, explained] = counts(rows);
   std::string out = fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n", features_section_id, features_section_title);
   out += "<style>tr.unchecked td:first-child { background: #fff1e5; color: #953800; font-weight: bold; }"
+         " tr.not-checkable td:first-child { background: #f3f4f6; color: #57606a; }"
          " table.features td:nth-child(3), table.features td:nth-child(4) { font-size: 0.9em; }</style>\n";
   out += fmt::format(
       "<p>Each row of the code-site tables of docs/model.md (an equation or a group of them) against the studies "
       "of this report: a study <strong>checks</strong> a row when one of its check rows cites a label of it, and "
       "<strong>shows</strong> it when only its text, figures or README do (labels cited as written, a group "
-      "label covering its sub-labels). <strong>{} of {}</strong> rows are checked; the others are marked.</p>\n",
-      checked, rows.size());
+      "label covering its sub-labels). <strong>{} of {}</strong> rows are checked; not checkable by a study output on its "
+      "own (a definition or a choice; the reason stands in the row, from docs/model.md): {}; unchecked, marked: {}.</p>\n",
+      checked, rows.size(), explained, rows.size() - checked - explained);
   out += "<table class=\"features\">\n<thead><tr><th>Equations</th><th>What</th><th>Checked by</th><th>Shown in</th></tr></thead>\n<tbody>\n";
   for (const auto& r : rows)
-    out += fmt::format("<tr{}><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", r.checked_by.empty() ? " class=\"unchecked\"" : "",
-                       html_escape(r.equations), html_escape(r.what), study_list_html(r.checked_by), study_list_html(r.shown_in));
+    out += fmt::format("<tr{}><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", row_class(r), html_escape(r.equations),
+                       html_escape(r.what), checked_html(r), study_list_html(r.shown_in));
   return out + "</tbody>\n</table>\n</section>\n";
 }
 
 std::string features_markdown(const std::vector<FeatureRow>& rows) {
-  const auto checked = std::count_if(rows.begin(), rows.end(), [](const FeatureRow& r) { return !r.checked_by.empty(); });
+  const auto [checked, explained] = counts(rows);
   std::string out = fmt::format("<a id=\"{}\"></a>\n\n## {}\n\n", features_section_id, features_section_title);
   out += fmt::format("{} of {} rows of docs/model.md's code-site tables are checked by a study (a check row cites a "
-                     "label of the row); the others are in bold.\n\n| Equations | What | Checked by | Shown in |\n|---|---|---|---|\n",
-                     checked, rows.size());
+                     "label of the row); not checkable by a study output on its own (a definition or a choice; the reason stands in "
+                     "the row): {}; unchecked, in bold: {}.\n\n| Equations | What | Checked by | Shown in |\n|---|---|---|---|\n",
+                     checked, rows.size(), explained, rows.size() - checked - explained);
   auto list = [](const std::vector<std::string>& v) {
     std::string s;
     for (const auto& f : v) s += (s.empty() ? "" : ", ") + markdown_escape(f);
@@ -170,8 +205,10 @@ std::string features_markdown(const std::vector<FeatureRow>& rows) {
   };
   for (const auto& r : rows) {
     const std::string eq = markdown_escape(r.equations);
-    out += "| " + (r.checked_by.empty() ? "**" + eq + "**" : eq) + " | " + markdown_escape(r.what) + " | " + list(r.checked_by) +
-           " | " + list(r.shown_in) + " |\n";
+    const bool unchecked = r.checked_by.empty() && r.not_checkable.empty();
+    const std::string by = r.checked_by.empty() && !r.not_checkable.empty() ? "not checkable: " + markdown_escape(r.not_checkable)
+                                                                             : list(r.checked_by);
+    out += "| " + (unchecked ? "**" + eq + "**" : eq) + " | " + markdown_escape(r.what) + " | " + by + " | " + list(r.shown_in) + " |\n";
   }
   return out + "\n";
 }

@@ -62,3 +62,28 @@ TEST_CASE("feature matrix: a study checks a row through its check rows - shows i
   CHECK(html.find("1 of 3") != std::string::npos);
   CHECK(html.find("class=\"unchecked\"") != std::string::npos);
 }
+
+TEST_CASE("feature matrix: model.md's why-not table explains an unchecked row - a checked row keeps its studies") {
+  const std::string md = "| Equations | What | Code |\n|---|---|---|\n| M14.1, M14.2 | linearised displacements | - |\n"
+                         "| K27 | neighbour search | c |\n| M8 | tension cut-off | c |\n\n"
+                         "| Equations | Why no study checks it |\n|---|---|\n| M14.1, M14.2 | only their increments are used |\n"
+                         "| M8 | a reason that a check overrides |\n| K99 | a row that is not in the code tables |\n";
+  report::StudyReport s;
+  s.source.folder = "a";
+  s.source.result = {{"checks", {{{"label", "cut-off (M8)"}, {"passed", true}}}}};
+  const auto rows = report::match_features(report::feature_rows(md), {s});
+  REQUIRE(rows.size() == 3);
+  CHECK(rows[0].not_checkable == "only their increments are used");
+  CHECK(rows[1].not_checkable.empty());
+  CHECK(rows[2].checked_by == std::vector<std::string>{"a"});
+  const std::string html = report::features_html(rows);
+  CHECK(html.find("1 of 3</strong> rows are checked; not checkable") != std::string::npos);
+  CHECK(html.find("<tr class=\"not-checkable\"><td>M14.1, M14.2</td>") != std::string::npos);
+  CHECK(html.find("<em>not checkable</em>: only their increments are used") != std::string::npos);
+  CHECK(html.find("<tr class=\"unchecked\"><td>K27</td>") != std::string::npos);
+  CHECK(html.find("a reason that a check overrides") == std::string::npos);
+  const std::string md_out = report::features_markdown(rows);
+  CHECK(md_out.find("| M14.1, M14.2 | linearised displacements | not checkable: only their increments are used |") != std::string::npos);
+  CHECK(md_out.find("| **K27** |") != std::string::npos);
+  CHECK(md_out.find("own (a definition or a choice; the reason stands in the row): 1; unchecked, in bold: 1.") != std::string::npos);
+}

@@ -92,6 +92,11 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
        {"b", "h", "L", "kn", "ks", "n_h", "n_l", "N", "ends", "k_c", "k_t", "k_pt", "R_s", "R_l"}},
       {"beam.lattice_exact_first_crack_load",
        {"b", "h", "L", "kn", "ks", "n_h", "n_l", "N", "ends", "k_c", "k_t", "k_pt", "R_s", "R_l", "sigma_t"}},
+      {"matsui.pair_time_step", {"zeta", "m", "K"}},
+      {"disk_slope.position", {"m", "kn", "s", "zeta", "alpha", "phi", "g", "t"}},
+      {"disk_slope.velocity", {"m", "kn", "s", "zeta", "alpha", "phi", "g", "t"}},
+      {"disk_slope.spin_speed", {"m", "kn", "s", "zeta", "alpha", "phi", "g", "t"}},
+      {"kiyama.rest_overlap", {"m", "g", "E", "nu", "r", "q", "c", "factor"}},
   };
   const auto infos = ref::solvers();
   CHECK(infos.size() == expected.size());
