@@ -86,8 +86,8 @@ StartNetwork start_network(const Model& m) {
   net.hopf = net.hopf_stick = inf;
   net.bonded.assign(n, 0);
   std::vector<int> dof(n, -1);
-  for (std::size_t i = 0; i < n; ++i)
-    if (e.active[i] && e.motion[i] == Motion::free) dof[i] = 3 * (net.dofs++);
+  for (std::size_t i = 0; i < n; ++i)  // checked access: once per guard, O(n)
+    if (e.active.at(i) && e.motion.at(i) == Motion::free) dof.at(i) = 3 * (net.dofs++);
   net.dofs *= 3;
   // bonded at the start as face_geometry.hpp has it: a face law bonding at the start, or one lattice group
   auto bonds = [&](const PairLaw& law, std::size_t i, std::int64_t j) {

@@ -13,13 +13,15 @@
 
 #include "dem/cases/case_file.hpp"
 #include "dem/core/simulation.hpp"
+#include "dem/core/stability_eigen.hpp"
 
 #include "../test_support.hpp"
 
 namespace {
 
 // Lattice A: (0,0), (20,0) mm; lattice B: (40,0), (60,0) mm (touches A between 20 and 40); lattice C
-// (bonded = false): (0,20), (20,20) mm on top of A; a lone element at (79.9,0) mm (overlapping B by 0.1 mm); a floor under A and B.
+// (bonded = false): (0,20), (20,20) mm on top of A, read between A and B (so that A's last element
+// touches C's last, the index after it); a lone element at (79.9,0) mm (overlapping B by 0.1 mm); a floor under A and B.
 std::string blocks(bool law_bonded, double vx_lone) {
   const std::string b = law_bonded ? "true" : "false";
   return R"(
@@ -59,17 +61,17 @@ rows = 1
 shape = "pre"
 material = "block"
 radius = 0.01
-origin = [0.04, 0.0]
-columns = 2
-rows = 1
-[[lattice]]
-shape = "pre"
-material = "block"
-radius = 0.01
 origin = [0.0, 0.02]
 columns = 2
 rows = 1
 bonded = false
+[[lattice]]
+shape = "pre"
+material = "block"
+radius = 0.01
+origin = [0.04, 0.0]
+columns = 2
+rows = 1
 [[element]]
 shape = "pre"
 material = "block"
@@ -147,5 +149,25 @@ TEST_CASE("A loose PRE with a tensile strength carries no tension - a bonded one
       CHECK(s.face_segments(b1, lone, false).n == 0);  // opened at once
       CHECK(most_tension == 0.0);
     }
+  }
+}
+
+// The time-step guard's start network (stability_eigen.hpp, G1) must see the bonds the step makes: the
+// elements of the two bonded lattices, and every touching element when the law bonds. Planted bug that
+// turned this red (mutant g578749-017): the group of element i + 1 compared instead of i's.
+TEST_CASE("The eigen guard sees the bonds the first step makes", "[face][bonds][stability]") {
+  for (bool law_bonded : {false, true}) {
+    CAPTURE(law_bonded);
+    const dem::Model m = dem::read_case(test::write_temp("bond_guard.toml", blocks(law_bonded, 0.0))).model;
+    const dem::StartNetwork net = dem::start_network(m);
+    dem::Simulation s(m);
+    const double places[7][2] = {{0, 0}, {20, 0}, {40, 0}, {60, 0}, {0, 20}, {20, 20}, {79.9, 0}};
+    for (const auto& p : places) {
+      const double x = p[0], y = p[1];
+      CAPTURE(x, y);
+      const bool in_lattice = y == 0.0 && x < 70.0;
+      CHECK(net.bonded.at(at(s, x, y)) == ((law_bonded || in_lattice) ? 1 : 0));
+    }
+    CHECK(net.any_bond);
   }
 }
