@@ -171,3 +171,13 @@ TEST_CASE("The eigen guard sees the bonds the first step makes", "[face][bonds][
     CHECK(net.any_bond);
   }
 }
+
+// A structure bonded by its lattices alone (no law says bonded) is a bonded structure for the time-step
+// guard (stability.cpp, start_network_if_bonded): its start network is assembled and its λ_max found.
+// Planted bug that turned this red (g578749-015): the scan over the elements' groups never ran.
+TEST_CASE("The guard assembles the start network of a structure bonded by its lattices alone", "[face][bonds][stability]") {
+  const dem::Model m = dem::read_case(test::write_temp("bond_guard_groups.toml", blocks(false, 0.0))).model;
+  const dem::StabilityBound b = dem::Simulation(m).stability_bound();
+  CHECK(b.lambda_max > 0.0);
+  CHECK(b.lambda_max == dem::network_eigenvalue(dem::start_network(m), false, false));
+}
