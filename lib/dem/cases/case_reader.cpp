@@ -215,7 +215,9 @@ std::map<std::string, double> TableReader::quantity_table(const std::string& key
 }
 
 std::int64_t TableReader::integer(const std::string& key, std::int64_t lo, std::int64_t hi) const {
-  KeyLog::Guard g(path_, key, use(KeyKind::integer, {}, nullptr, kRequired));
+  KeyUse u = use(KeyKind::integer, {}, nullptr, kRequired);
+  u.min = lo, u.max = hi;
+  KeyLog::Guard g(path_, key, std::move(u));
   const toml::node& n = need(key);
   auto v = n.value_exact<std::int64_t>();
   if (!v || *v < lo || *v > hi) fail(key, fmt::format("expected a whole number from {} to {}", lo, hi));
@@ -223,7 +225,9 @@ std::int64_t TableReader::integer(const std::string& key, std::int64_t lo, std::
 }
 std::int64_t TableReader::integer(const std::string& key, std::int64_t lo, std::int64_t hi,
                                   std::int64_t fallback) const {
-  KeyLog::Guard g(path_, key, use(KeyKind::integer, {}, fallback, kOptional));
+  KeyUse u = use(KeyKind::integer, {}, fallback, kOptional);
+  u.min = lo, u.max = hi;
+  KeyLog::Guard g(path_, key, std::move(u));
   used_.insert(key);
   return t_.contains(key) ? integer(key, lo, hi) : fallback;
 }

@@ -6,6 +6,7 @@
 // the reader: a key the reader accepts that the table lacks, a key of the table the reader never reads,
 // or a type, unit, word list or default that differs, fails that test.
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,7 @@ struct KeyUse {
   std::vector<std::string> choices;
   nlohmann::json fallback;  // the default applied when the key is absent (null: none given to the getter)
   bool required = false;    // read without a default: missing is an error
+  std::optional<std::int64_t> min, max;  // integer: the range the reader accepts
 };
 
 /// Table path without array indices ("contact.kn_from_elastic", "" for the top level) → key → its reads.

@@ -86,8 +86,8 @@ StartNetwork start_network(const Model& m, const std::vector<std::uint8_t>* only
   net.hopf = net.hopf_stick = inf;
   net.bonded.assign(n, 0);
   std::vector<int> dof(n, -1);
-  for (std::size_t i = 0; i < n; ++i)
-    if (e.active[i] && e.motion[i] == Motion::free && (only == nullptr || (*only)[i])) dof[i] = 3 * (net.dofs++);
+  for (std::size_t i = 0; i < n; ++i)  // checked access: once per guard, O(n)
+    if (e.active.at(i) && e.motion.at(i) == Motion::free && (only == nullptr || only->at(i))) dof.at(i) = 3 * (net.dofs++);
   net.dofs *= 3;
   // bonded at the start as face_geometry.hpp has it: a face law bonding at the start, or one lattice group
   auto bonds = [&](const PairLaw& law, std::size_t i, std::int64_t j) {
@@ -162,10 +162,10 @@ std::pair<double, std::vector<double>> tridiagonal_max(const std::vector<double>
   for (int it = 0; it < 3; ++it) {
     d[0] = a[0] - sigma;
     std::vector<double> y = s;
-    for (std::size_t i = 1; i < m; ++i) {  // forward elimination
-      const double f = b[i - 1] / (d[i - 1] == 0.0 ? 1e-300 : d[i - 1]);
-      d[i] = a[i] - sigma - f * b[i - 1];
-      y[i] -= f * y[i - 1];
+    for (std::size_t i = 1; i < m; ++i) {  // forward elimination (checked access: m ≤ 100, not hot)
+      const double f = b.at(i - 1) / (d.at(i - 1) == 0.0 ? 1e-300 : d.at(i - 1));
+      d.at(i) = a.at(i) - sigma - f * b.at(i - 1);
+      y.at(i) -= f * y.at(i - 1);
     }
     s[m - 1] = y[m - 1] / (d[m - 1] == 0.0 ? 1e-300 : d[m - 1]);
     for (std::size_t i = m - 1; i-- > 0;) s[i] = (y[i] - b[i] * s[i + 1]) / (d[i] == 0.0 ? 1e-300 : d[i]);

@@ -76,6 +76,10 @@ std::string mismatch(const dem::KeyUse& u, const dem::KeySpec& k) {
                         u.kind == dem::KeyKind::other || u.kind == dem::KeyKind::element;
   if (k.required && !u.required && !may_miss)
     return "the table says required, the reader has a default for it";
+  // an integer's range (the table states no maximum where it depends on the case: an element index)
+  if (u.kind == dem::KeyKind::integer && u.max && k.kind == dem::SpecKind::integer && (u.min != k.min || (k.max && u.max != k.max)))
+    return fmt::format("range: the table says {} to {}, the reader accepts {} to {}", k.min.value_or(-1), k.max.value_or(-1), *u.min,
+                       *u.max);
   if (!k.fallback.is_null() && !u.fallback.is_null() && si_default(k) != u.fallback)
     return fmt::format("default: the table says {}, the reader applies {}", k.fallback.dump(), u.fallback.dump());
   return "";

@@ -33,6 +33,12 @@ TEST_CASE("K23 rejects non-physical input", "[constants]") {
   CHECK_THROWS(dem::hertz_2d_stiffness(-1.0, 0.3, 0.01, 1.0));
   CHECK_THROWS(dem::hertz_2d_stiffness(1e7, 0.5, 0.01, 1.0));
   CHECK_THROWS(dem::hertz_2d_stiffness(1e7, 0.3, 0.0, 1.0));
+  // each condition alone, and both ends of 0 <= nu < 0.5 (g578749-006 joined q <= 0 and nu < 0 by "and")
+  CHECK_THROWS(dem::hertz_2d_stiffness(1e7, 0.3, 0.01, 0.0));
+  CHECK_THROWS(dem::hertz_2d_stiffness(1e7, -0.1, 0.01, 1.0));
+  CHECK_THROWS(dem::hertz_2d_stiffness(0.0, 0.3, 0.01, 1.0));
+  CHECK(dem::hertz_2d_stiffness(1e7, 0.0, 0.01, 1.0) > 0.0);
+  CHECK(dem::hertz_2d_stiffness(1e7, 0.4999, 0.01, 1.0) > 0.0);
 }
 
 TEST_CASE("Damping ratio and restitution are inverse (convention A)", "[constants]") {

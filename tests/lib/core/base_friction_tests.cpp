@@ -265,3 +265,34 @@ TEST_CASE("The time-step guard counts base friction's dashpot: mu_B g_B / v_eps"
   CHECK(with.limit * rate <= 2.0);  // an explicit dashpot alone is stable only for cΔt < 2
   CHECK_THAT(with.law, Contains("base friction"));
 }
+
+// A disk on the plate (issue 40: base friction acted only on PREs in the tests): its inertia m r²/2 makes
+// the spin-down rate (2/3) μ m g r / I = (4/3) μ g / r; its centre is dragged at μ g as a PRE's.
+// Planted bug that turned this red: base friction applied to PREs only (disks skipped).
+TEST_CASE("A disk on the plate spins down at (4/3) mu g / r and is dragged at mu g", "[base_friction]") {
+  for (const auto& [omega0, vb] : {std::pair{2.0, 0.0}, std::pair{-3.0, 4e-3}}) {
+    CAPTURE(omega0, vb);
+    const double dt = 1e-6;
+    dem::Model m = element_on_plate({0.0, -vb}, dt);
+    m.elements = {};
+    dem::add_element(m, dem::Shape::disk, 0, kRadius, {0.0, 0.0}, {}, omega0, dem::PreMass::square, kMass);
+    REQUIRE(m.elements.inertia[0] == 0.5 * kMass * kRadius * kRadius);
+    dem::Simulation sim(m);
+    for (int k = 0; k < 100; ++k) sim.step();
+    const double t = 100 * dt, g = kMu * kG;
+    // V = √(u² + (rθ̇)²): the friction splits between spin and slide in the ratio rθ̇ : u
+    const auto& e = sim.model().elements;
+    if (vb == 0.0) {
+      CHECK_THAT(e.omega[0], WithinRel(omega0 - (4.0 / 3.0) * g / kRadius * t, 1e-12));
+      CHECK(e.vy[0] == 0.0);
+    } else {  // the first step as M21 gives it, on the disk's inertia
+      dem::Simulation one(m);
+      one.step();
+      const double v = std::hypot(vb, kRadius * omega0);
+      const auto& f = one.model().elements;
+      CHECK_THAT(f.vy[0], WithinRel(-(vb / v) * g * dt, 1e-9));
+      CHECK_THAT(f.omega[0] - omega0, WithinRel(-(kRadius * omega0 / v) * (2.0 / 3.0) * kMass * g * kRadius /
+                                                    (0.5 * kMass * kRadius * kRadius) * dt, 1e-9));
+    }
+  }
+}
