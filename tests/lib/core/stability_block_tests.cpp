@@ -28,6 +28,22 @@ dem::Model disk_with_partners(bool stiff) {
   if (stiff) fixed(2, 5.0);
   return m;
 }
+
+/// Two free PREs (0.5 kg) bonded face to face by `face_kn` (segments at the ends, K_s = 0, no dashpots;
+/// λ = 6 face_kn/m, stability_eigen_tests) and a free disk of `disk_mass` far away, a linear law
+/// `disk_kn` with the blocks, K18.
+dem::Model pair_and_disk(double face_kn, double disk_kn, double disk_mass) {
+  dem::Model m = test::make_model({{"block", 2000.0}, {"disk", 2650.0}}, 1e-7);
+  m.numerics.integrator = dem::Integrator::k18;
+  dem::PairLaw law = test::bonded_face_law(2, face_kn, 0.0, 0.0);
+  law.face.positions = dem::SegmentPositions::ends;
+  test::set_law(m, 0, 0, law);
+  test::set_law(m, 0, 1, test::linear_law(disk_kn, 0.0, 0.5, 0.0, 0.0));
+  dem::add_element(m, dem::Shape::pre, 0, r, {0.0, 0.0}, {}, 0.0, dem::PreMass::square, 0.5);
+  dem::add_element(m, dem::Shape::pre, 0, r, {2 * r, 0.0}, {}, 0.0, dem::PreMass::square, 0.5);
+  dem::add_element(m, dem::Shape::disk, 1, r, {1.0, 1.0}, {}, 0.0, dem::PreMass::square, disk_mass);
+  return m;
+}
 }  // namespace
 
 TEST_CASE("row sums split by partner class: one stiff partner counts once", "[stability]") {
@@ -45,15 +61,7 @@ TEST_CASE("block bound G5: the bonded block's row adds one load-disk contact and
   // Two free PREs bonded face to face (λ = 6 K_n/m, stability_eigen_tests) and a heavy free disk far
   // away with a linear law 10 K_n: the disk's own row is slow, so the bonded block's row sets G5.
   constexpr double m_pre = 0.5, m_disk = 50.0;
-  dem::Model m = test::make_model({{"block", 2000.0}, {"disk", 2650.0}}, 1e-7);
-  m.numerics.integrator = dem::Integrator::k18;
-  dem::PairLaw law = test::bonded_face_law(2, kn, 0.0, 0.0);
-  law.face.positions = dem::SegmentPositions::ends;
-  test::set_law(m, 0, 0, law);
-  test::set_law(m, 0, 1, test::linear_law(10 * kn, 0.0, 0.5, 0.0, 0.0));
-  dem::add_element(m, dem::Shape::pre, 0, r, {0.0, 0.0}, {}, 0.0, dem::PreMass::square, m_pre);
-  dem::add_element(m, dem::Shape::pre, 0, r, {2 * r, 0.0}, {}, 0.0, dem::PreMass::square, m_pre);
-  dem::add_element(m, dem::Shape::disk, 1, r, {1.0, 1.0}, {}, 0.0, dem::PreMass::square, m_disk);
+  const dem::Model m = pair_and_disk(kn, 10 * kn, m_disk);
   const dem::StabilityBound b = dem::Simulation(m).stability_bound();
   REQUIRE(b.eigen);
   // A_LL: the pair, plus one contact with the disk on a PRE (w + b); ‖A_Lu‖ ≤ √2 b (the disk can touch
@@ -71,15 +79,7 @@ TEST_CASE("block bound G5: the guard above both the Weyl sum and the row sums", 
   // whole row, 2 (K/m_d + K/√(m_d m)) (two contacts on one axis, opposite sides), to the pair's λ; G5
   // takes the larger of the bonded block's row and the disk's, here the bonded block's.
   constexpr double m_disk = 0.05, m_pre = 0.5, kf = 10 * kn;
-  dem::Model m = test::make_model({{"block", 2000.0}, {"disk", 2650.0}}, 1e-7);
-  m.numerics.integrator = dem::Integrator::k18;
-  dem::PairLaw law = test::bonded_face_law(2, kf, 0.0, 0.0);
-  law.face.positions = dem::SegmentPositions::ends;
-  test::set_law(m, 0, 0, law);
-  test::set_law(m, 0, 1, test::linear_law(kn, 0.0, 0.5, 0.0, 0.0));
-  dem::add_element(m, dem::Shape::pre, 0, r, {0.0, 0.0}, {}, 0.0, dem::PreMass::square, m_pre);
-  dem::add_element(m, dem::Shape::pre, 0, r, {2 * r, 0.0}, {}, 0.0, dem::PreMass::square, m_pre);
-  dem::add_element(m, dem::Shape::disk, 1, r, {1.0, 1.0}, {}, 0.0, dem::PreMass::square, m_disk);
+  const dem::Model m = pair_and_disk(kf, kn, m_disk);
   const dem::StabilityBound b = dem::Simulation(m).stability_bound();
   REQUIRE(b.eigen);
   const double coupling = kn / std::sqrt(m_disk * m_pre);
