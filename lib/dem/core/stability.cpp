@@ -505,13 +505,6 @@ int count_unbonded_free(const Elements& e, const StartNetwork& net, std::size_t 
   return n;
 }
 
-bool has_unbonded_free(const Elements& e, const StartNetwork& net, std::size_t material) {
-  for (std::size_t i = 0; i < e.size(); ++i)
-    if (e.active[i] && e.motion[i] == Motion::free && static_cast<std::size_t>(e.material[i]) == material && !net.bonded[i])
-      return true;
-  return false;
-}
-
 /// A bonded structure: the limit from the eigenvalues of the start network (G3) plus the contacts that
 /// can still form (G4); never above what the row sums allow by more than they are conservative.
 void apply_eigen_bound(const Model& m, const StartNetwork& net, const ClassRates& u, StabilityBound& out) {
@@ -731,9 +724,9 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
       return out;
     }
     info[a].zd = zd;
-    if (net.any_bond && has_unbonded_free(e, net, a)) {
+    if (const int unbonded_free = net.any_bond ? count_unbonded_free(e, net, a) : 0; unbonded_free > 0) {
       unbonded.add(lam, c, hopf, aks.value + xk, acs.value + xc, hopf_s);
-      info[a].unbonded_free = count_unbonded_free(e, net, a);
+      info[a].unbonded_free = unbonded_free;
       info[a].limit = limit, info[a].limit_s = limit_s;
     }
     if (net.any_bond && has_bonded_free(e, net, a)) {
