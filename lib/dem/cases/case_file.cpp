@@ -113,6 +113,7 @@ struct Reader {
   Case& c;
   std::map<std::string, std::int32_t> material_index, drive_index, wall_index;
   std::int32_t next_group = 0;
+  std::map<std::int32_t, std::string> rotated_lever_at;  // law index → "file:line: contact[k].lever" (M19.r)
 
   // The tables of a case file, one function each (defined below, after the helpers they call); read_case
   // calls them in the order of the file format, each table may refer to those before it.
@@ -282,6 +283,10 @@ struct Reader {
       non_negative(r, "cohesion", f.cohesion);
       f.tan_phi = mu;
       f.healing = r.boolean("healing", false);
+      if (r.choice("lever", {"wall_frame", "rotated_corner"}, "wall_frame") == "rotated_corner") {  // (M19), (M19.r)
+        f.lever = FaceLever::rotated_corner;
+        rotated_lever_at[static_cast<std::int32_t>(m.laws.size())] = fmt::format("{}: {}", where(*r.node("lever"), file), r.key_path("lever"));
+      }
       law.bond_at_start = r.boolean("bonded", false);
       // springs: discrete per segment (N/m, M6.1, M6.2) or moduli k_n, k_s per unit area per unit strain
       // (Pa, M4, M5) that the face constants turn into K_n, K_s (M6.3, M6.4)
@@ -743,8 +748,13 @@ void Reader::check_laws_and_masses(const TableReader& top) const {
     for (std::size_t b = 0; b < used.size(); ++b) {
       const bool elements_meet = used[a] && used[b] && (a != b || used[a] > 1);
       if (!used[a] || !(elements_meet || wall_used[b])) continue;
-      if (m.law_of_pair[a * used.size() + b] < 0)
+      const std::int32_t law = m.law_of_pair[a * used.size() + b];
+      if (law < 0)
         top.fail("contact", fmt::format("missing [[contact]] between \"{}\" and \"{}\"", m.materials[a].name, m.materials[b].name));
+      if (elements_meet && rotated_lever_at.count(law))  // (M19.r) follows one element's corner on a wall
+        throw CaseError(fmt::format("{}: \"rotated_corner\" is for walls (M19.r), but elements of \"{}\" and \"{}\" can "
+                                    "meet under this law; give the element pair its own [[contact]]",
+                                    rotated_lever_at.at(law), m.materials[a].name, m.materials[b].name));
     }
   }
   for (std::size_t i = 0; i < m.elements.size(); ++i)
@@ -993,7 +1003,7 @@ Case read_parsed_case(toml::table root, const std::filesystem::path& path, const
   Case c;
   c.path = path;
   c.overrides = overrides;
-  Reader rd{file, c, {}, {}, {}, 0};
+  Reader rd{file, c, {}, {}, {}, 0, {}};
   TableReader top(root, "", file);
 
   // The tables in this order: each may refer to those before it (materials, drives, walls, Δt).

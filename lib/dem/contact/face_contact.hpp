@@ -26,6 +26,11 @@ enum class TangentialIncrement : std::uint8_t {
   linearised,  // (M15.2): Cundall's increment
   hisatake     // (M16): rotation terms only, no translation (kept as the comparison that drifts)
 };
+// Where a WALL contact's segment forces act on the element (M19): at the face points of the wall frame
+// (the paper: M12 with M19), or at the element's rotated body points R(θ1)(r1 n + aξ t), the face-end
+// rule that follows the rotated corner (M19.r, not in the paper; docs/model.md). Walls only: the case
+// reader refuses it on a law that two elements can share.
+enum class FaceLever : std::uint8_t { wall_frame, rotated_corner };
 
 struct FaceLaw {
   int segments = 1;                                    // N
@@ -36,6 +41,7 @@ struct FaceLaw {
   double cohesion = 0.0;          // c [Pa]
   double tan_phi = 0.0;           // tan φ
   bool healing = false;           // a re-formed link regains σ_t and c
+  FaceLever lever = FaceLever::wall_frame;  // (M19), (M19.r): wall contacts only
 };
 
 /// Per-pair constants fixed when the contact forms (they depend on the radii and masses).
@@ -79,7 +85,8 @@ struct FaceKinematics {
 struct FaceForce {
   double p = 0.0;        // normal resultant Σ(P_e + P_d) [N] (M12), compression positive
   double q = 0.0;        // shear resultant Σ(Q_e + Q_d) [N] (M12)
-  double p_moment = 0.0; // Σ a ξ_i P(i) [N·m]: M1 = −r1 Q + p_moment, M2 = −r2 Q − p_moment
+  double p_moment = 0.0; // Σ a ξ_i P(i) [N·m]: M1 = −r1 Q + p_moment, M2 = −r2 Q − p_moment; with the
+                         // rotated lever (M19.r, walls) M1 + r1 Q, so that M1 = −r1 Q + p_moment still
   int links = 0;         // segments linked after the step
   bool any_tensile = false;  // a linked segment still has tensile strength
 };
@@ -145,9 +152,11 @@ struct SegmentSums {
   std::uint8_t any_intact = 0;  // a linked segment is intact (keeps σ_t)
 };
 
-/// One step of segment i (M6–M12), after the first step's shear restart; adds its resultants to the sums.
+/// One step of segment i (M6–M12), after the first step's shear restart; adds its resultants to the sums
+/// (and Σ a ξ_i Q(i) to *sum_q_moment when given: the rotated lever, M19.r).
 [[gnu::always_inline]] inline void segment(const SegmentInputs& in, int i, FaceHistory& h, double& sum_p,
-                                           double& sum_q, double& sum_moment, int& links, std::uint8_t& any_intact) {
+                                           double& sum_q, double& sum_moment, int& links, std::uint8_t& any_intact,
+                                           double* sum_q_moment = nullptr) {
   SegmentState& s = h.seg[static_cast<std::size_t>(i)];
   const double xi = in.xis[i];
   const double du = in.du0 + in.du_xi * xi;
@@ -189,6 +198,7 @@ struct SegmentSums {
   sum_p += p;
   sum_q += q;
   sum_moment += in.a * xi * p;
+  if (sum_q_moment) *sum_q_moment += in.a * xi * q;
   ++links;
   any_intact |= s.intact;
 }
@@ -280,9 +290,19 @@ inline FaceForce face_contact_force_scalar(const FaceLaw& law, const FaceConstan
   bool first = false;
   const face_detail::SegmentInputs in = face_detail::face_inputs(law, c, k, inv_dt, h, first);
   face_detail::SegmentSums r;
-  double sum_p = 0.0, sum_q = 0.0, sum_moment = 0.0;
-  for (int i = 0; i < law.segments; ++i) face_detail::segment(in, i, h, sum_p, sum_q, sum_moment, r.links, r.any_intact);
+  double sum_p = 0.0, sum_q = 0.0, sum_moment = 0.0, sum_q_moment = 0.0;
+  const bool rotated = law.lever == FaceLever::rotated_corner;
+  for (int i = 0; i < law.segments; ++i)
+    face_detail::segment(in, i, h, sum_p, sum_q, sum_moment, r.links, r.any_intact, rotated ? &sum_q_moment : nullptr);
   r.p = sum_p, r.q = sum_q, r.moment = sum_moment;
+  if (rotated) [[unlikely]] {
+    // (M19.r): segment i's −P(i) n − Q(i) t acts at the body point R(θ1)(r1 n + aξ_i t), θ1 the element's
+    // rotation against the wall since the contact started:
+    // M1 = cos θ1 (−r1 Q + Σ aξ P) + sin θ1 (r1 P + Σ aξ Q); kept as p_moment = M1 + r1 Q (FaceForce).
+    const double c1 = std::cos(h.theta1), s1 = std::sin(h.theta1);
+    const double m1 = c1 * (-k.r1 * sum_q + sum_moment) + s1 * (k.r1 * sum_p + sum_q_moment);
+    r.moment = m1 + k.r1 * sum_q;
+  }
   return face_detail::face_resultants(law, r, first, h);
 }
 

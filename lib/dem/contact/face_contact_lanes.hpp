@@ -158,6 +158,8 @@ template <int NFixed>
 /// segments unrolled for N known at compile time, segments 0…3 in vector lanes on the usual path.
 [[gnu::always_inline]] inline FaceForce face_contact_force(const FaceLaw& law, const FaceConstants& c, const FaceKinematics& k,
                                     double inv_dt, FaceHistory& h) {
+  if (law.lever == FaceLever::rotated_corner) [[unlikely]]  // (M19.r): a wall's option, the readable path
+    return face_contact_force_scalar(law, c, k, inv_dt, h);
   bool first = false;
   const face_detail::SegmentInputs in = face_detail::face_inputs(law, c, k, inv_dt, h, first);
   const int n = law.segments;

@@ -25,6 +25,7 @@ std::string law_in_words(const nlohmann::json& l) {
     s += fmt::format(", tan phi = {:.6g}, tensile strength {:.6g} Pa, cohesion {:.6g} Pa{}{}", l["friction"].get<double>(),
                      l["tensile_strength"].get<double>(), l["cohesion"].get<double>(), l["bonded"].get<bool>() ? ", bonded at the start" : "",
                      l["healing"].get<bool>() ? ", healing" : "");
+    if (l.value("lever", "wall_frame") == "rotated_corner") s += ", at a wall the forces act at the rotated corner (M19.r)";
   }
   if (l.contains("damping_ratio"))
     s += fmt::format(", damping ratio {:.6g} ({} mass)", l["damping_ratio"].get<double>(), l["mass_basis"].get<std::string>());

@@ -77,6 +77,7 @@ nlohmann::json law_json(const Model& m, const PairLaw& law) {
     j["tensile_strength"] = f.tensile_strength;
     j["cohesion"] = f.cohesion;
     j["healing"] = f.healing;
+    j["lever"] = f.lever == FaceLever::wall_frame ? "wall_frame" : "rotated_corner";
     j["bonded"] = law.bond_at_start;
   }
   (void)m;

@@ -267,3 +267,25 @@ TEST_CASE("case file: inputs that would give a silent wrong answer are refused a
              Contains("arrangement.0.count_near") && Contains("needs more than 1000000 rows"));
   CHECK(dem::read_case(silo, {"arrangement.0.count_near=350"}).model.elements.size() == 350);
 }
+
+TEST_CASE("case file: the rotated-corner lever is read for a wall law and refused where elements meet (M19.r)", "[case]") {
+  const auto path = std::filesystem::path(DEM2D_SOURCE_DIR) / "cases/base_friction/mc_topple_3pre.toml";  // contact 1: PRE–slope
+  CHECK(dem::read_case(path).model.laws[1].face.lever == dem::FaceLever::wall_frame);  // the paper's rule by default
+  const auto c = dem::read_case(path, {"contact.1.lever=rotated_corner"});
+  CHECK(c.model.laws[1].face.lever == dem::FaceLever::rotated_corner);
+  CHECK(c.model.laws[0].face.lever == dem::FaceLever::wall_frame);
+  // on the PRE–PRE law the lever of one element would be wrong for the other: refused, at the key's line
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  std::string text = s.str();
+  const std::string pair = "between = [\"aluminium\", \"aluminium\"]\n";
+  const auto pos = text.find(pair);
+  REQUIRE(pos != std::string::npos);
+  const int line = 2 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
+  text.insert(pos + pair.size(), "lever = \"rotated_corner\"\n");
+  const std::string file = test::write_temp("pair_lever.toml", text).string();
+  CHECK_THAT(read_error(file), StartsWith(file + ":" + std::to_string(line) + ": contact.0.lever: ") &&
+                                   Contains("for walls") && Contains("\"aluminium\" and \"aluminium\" can meet"));
+  CHECK_THAT(read_error(path.string(), {"contact.1.lever=corner"}), Contains("contact.1.lever") && Contains("rotated_corner"));
+}

@@ -681,3 +681,66 @@ TEST_CASE("face: face_contact_force (segments in lanes) gives face_contact_force
       }
   CHECK(steps == 8 * 2 * 4 * 300);
 }
+
+TEST_CASE("face: the rotated-corner lever puts each segment force at the element's rotated body point (M19.r)", "[face]") {
+  // A wall contact (r2 = 0) of N segments turned by θ in one step with a shear and normal load: the moment
+  // on element 1 must be Σ_i x_i × F_i with x_i = R(θ)(r1 n + aξ_i t) and F_i = −P_i n − Q_i t, formed here
+  // with explicit vectors (n = (0, −1): the wall below; t = n turned by +90° = (1, 0)); the wall-frame lever
+  // (M19) puts F_i at r1 n + aξ_i t instead. Dashpots off, so P_i, Q_i are the segment states after the step.
+  const int n = GENERATE(1, 2, 3, 5);
+  const double theta = GENERATE(0.0, 0.3, -0.7, 1.2);
+  CAPTURE(n, theta);
+  const dem::Vec2 nn{0.0, -1.0}, tt{1.0, 0.0};
+  for (const auto lever : {dem::FaceLever::wall_frame, dem::FaceLever::rotated_corner}) {
+    auto law = face_law(n, n == 2 ? dem::SegmentPositions::ends : dem::SegmentPositions::centres);
+    law.normal = dem::NormalIncrement::exact;
+    law.tangential = dem::TangentialIncrement::exact;
+    law.lever = lever;
+    const auto c = constants(n);
+    dem::FaceHistory h;
+    dem::start_face(law, c, 2e-5, true, false, h);
+    dem::FaceKinematics k = normal_step(1e-6, a, 0.0);
+    k.dv_translation = k.dv_frame = 3e-6;
+    k.dphi1 = theta;
+    dem::FaceHistory h_fast = h;
+    const dem::FaceForce f = dem::face_contact_force_scalar(law, c, k, inv_dt, h);
+    const dem::FaceForce fast = dem::face_contact_force(law, c, k, inv_dt, h_fast);
+    CHECK(std::bit_cast<std::uint64_t>(fast.p_moment) == std::bit_cast<std::uint64_t>(f.p_moment));  // the same path
+    CHECK(std::bit_cast<std::uint64_t>(fast.q) == std::bit_cast<std::uint64_t>(f.q));
+    const double ct = std::cos(theta), st = std::sin(theta);
+    double expected = 0.0, scale = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const auto& s = h.seg[static_cast<std::size_t>(i)];
+      REQUIRE(s.linked == 1);
+      const double xi = law.positions == dem::SegmentPositions::ends ? (i == 0 ? -1.0 : 1.0) : (2.0 * i + 1.0 - n) / n;
+      const dem::Vec2 body = nn * a + tt * (a * xi);  // r1 = a
+      const dem::Vec2 at = lever == dem::FaceLever::rotated_corner ? dem::Vec2{ct * body.x - st * body.y, st * body.x + ct * body.y} : body;
+      const dem::Vec2 force = nn * (-s.pe) - tt * s.qe;
+      expected += at.x * force.y - at.y * force.x;
+      scale += a * (std::abs(s.pe) + std::abs(s.qe));
+    }
+    CAPTURE(static_cast<int>(lever));
+    CHECK_THAT(-a * f.q + f.p_moment, WithinAbs(expected, 1e-14 * scale));  // M1 = −r1 Q + p_moment
+  }
+}
+
+TEST_CASE("face: the two levers differ once the element has turned and agree before (M19, M19.r)", "[face]") {
+  auto law = face_law(2, dem::SegmentPositions::ends);
+  const auto c = constants(2);
+  dem::FaceHistory h0;
+  dem::start_face(law, c, 2e-5, true, false, h0);
+  for (const double theta : {0.0, 0.2}) {
+    dem::FaceKinematics k = normal_step(1e-6, a, 0.0);
+    k.dv_translation = k.dv_frame = 3e-6;
+    k.dphi1 = theta;
+    dem::FaceHistory hw = h0, hr = h0;
+    law.lever = dem::FaceLever::wall_frame;
+    const dem::FaceForce w = dem::face_contact_force(law, c, k, inv_dt, hw);
+    law.lever = dem::FaceLever::rotated_corner;
+    const dem::FaceForce r = dem::face_contact_force(law, c, k, inv_dt, hr);
+    CHECK(r.p == w.p);
+    CHECK(r.q == w.q);
+    if (theta == 0.0) CHECK_THAT(r.p_moment, WithinAbs(w.p_moment, 1e-15 * std::abs(a * w.q)));
+    else CHECK(std::abs(r.p_moment - w.p_moment) > 0.05 * std::abs(a * w.p));
+  }
+}
