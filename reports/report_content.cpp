@@ -203,7 +203,8 @@ ReadmeParts readme_parts(const nlohmann::json& result) {
   return parts;
 }
 
-std::vector<HeaderField> machine_fields() {
+namespace {
+std::vector<HeaderField> ask_machine() {
   std::vector<HeaderField> fields;
   struct utsname u {};
   if (uname(&u) == 0) fields.push_back({"OS", fmt::format("{} {} {}", u.sysname, u.release, u.machine)});
@@ -240,6 +241,14 @@ std::vector<HeaderField> machine_fields() {
     if (!v.empty()) fields.push_back({"Plots", v});
   }
 #endif
+  return fields;
+}
+}  // namespace
+
+std::vector<HeaderField> machine_fields() {
+  // The machine and its plotter do not change while a process runs: asked once (gnuplot --version takes
+  // ~50 ms, and the report fuzzer writes a report per input).
+  static const std::vector<HeaderField> fields = ask_machine();
   return fields;
 }
 
