@@ -15,6 +15,7 @@
 #include "ref/block_on_incline.hpp"
 #include "ref/disk_on_slope.hpp"
 #include "ref/elastic_contact_2d.hpp"
+#include "ref/face_rotation.hpp"
 #include "ref/free_fall.hpp"
 #include "ref/impact.hpp"
 #include "ref/lattice_beam.hpp"
@@ -44,6 +45,12 @@ struct Args {
     return static_cast<int>(value);
   }
 };
+
+FaceRotationForce face_rotation_force(const Args& a) {
+  const double ends = a("ends");
+  if (ends != 0.0 && ends != 1.0) detail::fail("ref::evaluate", "ends must be 0 or 1", ends);
+  return face_rotation_wall_force(a("Kn"), a("Ks"), a("r"), a.count("N"), ends == 1.0, a("theta"));
+}
 
 struct Entry {
   SolverInfo info;
@@ -182,6 +189,30 @@ std::vector<Entry> contact_entries() {
        {"theta", "rad", "small rotation about the face centre"}},
       "N m"},
      [](const Args& a) { return spring_layer_moment(a("k"), a("a"), a("theta")); }},
+    {{"face.rotation_wall_fx",
+      "force along the wall of a bonded face turned rigidly by theta about its centre (refs §4.7): sum K_s (s_i (cos theta - 1) + r sin theta)",
+      {{"Kn", "N/m", "normal stiffness of one segment spring"}, {"Ks", "N/m", "shear stiffness of one segment spring"},
+       {"r", "m", "half-length of the face (the element's radius)"}, {"N", "1", "number of segment springs"},
+       {"ends", "1", "1: springs at the face ends (M13.2, N = 2); 0: at the segment centres (M13.1)"},
+       {"theta", "rad", "rotation about the element's centre, counter-clockwise positive"}},
+      "N"},
+     [](const Args& a) { return face_rotation_force(a).fx; }},
+    {{"face.rotation_wall_fy",
+      "force normal to the wall (+: pulled towards the element) of the same face: sum K_n (s_i sin theta + r (1 - cos theta))",
+      {{"Kn", "N/m", "normal stiffness of one segment spring"}, {"Ks", "N/m", "shear stiffness of one segment spring"},
+       {"r", "m", "half-length of the face (the element's radius)"}, {"N", "1", "number of segment springs"},
+       {"ends", "1", "1: springs at the face ends (M13.2, N = 2); 0: at the segment centres (M13.1)"},
+       {"theta", "rad", "rotation about the element's centre, counter-clockwise positive"}},
+      "N"},
+     [](const Args& a) { return face_rotation_force(a).fy; }},
+    {{"face.rotation_moment_wall_frame",
+      "moment about its centre on an element whose bonded face is turned rigidly by theta, the spring forces acting at the wall's points (M19; refs §4.7)",
+      {{"Kn", "N/m", "normal stiffness of one segment spring"}, {"Ks", "N/m", "shear stiffness of one segment spring"},
+       {"r", "m", "half-length of the face (the element's radius)"}, {"N", "1", "number of segment springs"},
+       {"ends", "1", "1: springs at the face ends (M13.2, N = 2); 0: at the segment centres (M13.1)"},
+       {"theta", "rad", "rotation about the element's centre, counter-clockwise positive"}},
+      "N m"},
+     [](const Args& a) { return face_rotation_force(a).moment; }},
     {{"rest.overlap",
       "equilibrium overlap m g / K on a linear spring (refs §1.6, §1.7)",
       {argument::mass, argument::gravity, argument::stiffness},
