@@ -65,10 +65,13 @@ void strings_of(const nlohmann::json& j, std::string& out) {
   }
 }
 
-bool cites_any(const std::vector<std::string>& cited, const std::vector<std::string>& labels) {
+/// Whether a citation covers one of a row's labels. A group and a sub-label that have rows of their own
+/// (M19, the paper's wall lever, and M19.r, an alternative to it) are different features: between them
+/// only the label itself counts, not the group (`own`: every label that heads a row).
+bool cites_any(const std::vector<std::string>& cited, const std::vector<std::string>& labels, const std::set<std::string>& own) {
   for (const auto& c : cited)
     for (const auto& l : labels)
-      if (covers(c, l)) return true;
+      if (covers(c, l) && (c == l || !own.contains(c) || !own.contains(l))) return true;
   return false;
 }
 
@@ -155,6 +158,8 @@ std::vector<FeatureRow> feature_rows(const std::string& model_md) {
 }
 
 std::vector<FeatureRow> match_features(std::vector<FeatureRow> rows, const std::vector<StudyReport>& studies) {
+  std::set<std::string> own;
+  for (const auto& r : rows) own.insert(r.labels.begin(), r.labels.end());
   for (const auto& s : studies) {
     if (!s.source.readable()) continue;
     const nlohmann::json& r = s.source.result;
@@ -164,8 +169,8 @@ std::vector<FeatureRow> match_features(std::vector<FeatureRow> rows, const std::
       if (r.contains(key)) strings_of(r[key], elsewhere);
     const auto in_checks = cited_labels(checks), in_rest = cited_labels(elsewhere);
     for (auto& row : rows) {
-      if (cites_any(in_checks, row.labels)) row.checked_by.push_back(s.source.folder);
-      else if (cites_any(in_rest, row.labels)) row.shown_in.push_back(s.source.folder);
+      if (cites_any(in_checks, row.labels, own)) row.checked_by.push_back(s.source.folder);
+      else if (cites_any(in_rest, row.labels, own)) row.shown_in.push_back(s.source.folder);
     }
   }
   return rows;
@@ -181,7 +186,7 @@ std::string features_html(const std::vector<FeatureRow>& rows) {
       "<p>Each row of the code-site tables of docs/model.md (an equation or a group of them) against the studies "
       "of this report: a study <strong>checks</strong> a row when one of its check rows cites a label of it, and "
       "<strong>shows</strong> it when only its text, figures or README do (labels cited as written, a group "
-      "label covering its sub-labels). <strong>{} of {}</strong> rows are checked; not checkable by a study output on its "
+      "label covering its sub-labels unless both head rows of their own, as M19 and M19.r). <strong>{} of {}</strong> rows are checked; not checkable by a study output on its "
       "own (a definition or a choice; the reason stands in the row, from docs/model.md): {}; unchecked, marked: {}.</p>\n",
       checked, rows.size(), explained, rows.size() - checked - explained);
   out += "<table class=\"features\">\n<thead><tr><th>Equations</th><th>What</th><th>Checked by</th><th>Shown in</th></tr></thead>\n<tbody>\n";

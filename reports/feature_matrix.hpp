@@ -37,7 +37,9 @@ bool covers(const std::string& cited, const std::string& label);
 /// with the reason of the row of equal first cell in a table whose header ends with "Why no study checks it".
 std::vector<FeatureRow> feature_rows(const std::string& model_md);
 
-/// The rows with the studies that check or show each one (readable studies only).
+/// The rows with the studies that check or show each one (readable studies only). A citation covers a row
+/// as `covers` says, except between a group and a sub-label that head rows of their own (M19 and M19.r):
+/// there only the label itself counts.
 std::vector<FeatureRow> match_features(std::vector<FeatureRow> rows, const std::vector<StudyReport>& studies);
 
 std::string features_html(const std::vector<FeatureRow>& rows);

@@ -63,6 +63,25 @@ TEST_CASE("feature matrix: a study checks a row through its check rows - shows i
   CHECK(html.find("class=\"unchecked\"") != std::string::npos);
 }
 
+TEST_CASE("feature matrix: a group and a sub-label with rows of their own are cited apart") {
+  // M19 (the paper's lever) and M19.r (an alternative) each head a row: a check of one is no check of
+  // the other; M15's sub-labels have no row of their own, so M15.1 still covers the row M15.
+  const std::string md = "| Equations | What | Code |\n|---|---|---|\n| M19 | wall lever | c |\n"
+                         "| M19.r | corner lever | c |\n| M15 | linearised | c |\n";
+  auto study = [](const std::string& folder, const std::string& label) {
+    report::StudyReport s;
+    s.source.folder = folder;
+    s.source.result = {{"checks", {{{"label", label}, {"passed", true}}}}};
+    return s;
+  };
+  const std::vector<report::StudyReport> studies{study("wall", "theta (M19, M15.1)"), study("corner", "theta (M19.r)")};
+  const auto rows = report::match_features(report::feature_rows(md), studies);
+  REQUIRE(rows.size() == 3);
+  CHECK(rows[0].checked_by == std::vector<std::string>{"wall"});
+  CHECK(rows[1].checked_by == std::vector<std::string>{"corner"});
+  CHECK(rows[2].checked_by == std::vector<std::string>{"wall"});
+}
+
 TEST_CASE("feature matrix: model.md's why-not table explains an unchecked row - a checked row keeps its studies") {
   const std::string md = "| Equations | What | Code |\n|---|---|---|\n| M14.1, M14.2 | linearised displacements | - |\n"
                          "| K27 | neighbour search | c |\n| M8 | tension cut-off | c |\n\n"
