@@ -84,6 +84,12 @@ const SolverArgument beam_segments{"N", "1", "segments per face (integer)"};
 const SolverArgument beam_face_ends{"ends", "1", "0: segment centres (M13.1), 1: face ends (M13.2, N = 2)"};
 const SolverArgument support_stiffness{"k_c", "N/m", "stiffness of each support contact (in series)"};
 
+// a bonded face turned rigidly (ref/face_rotation.hpp)
+const std::vector<SolverArgument> face_rotation{
+    {"Kn", "N/m", "normal stiffness of one segment spring"}, {"Ks", "N/m", "shear stiffness of one segment spring"},
+    {"r", "m", "half-length of the face (the element's radius)"}, {"N", "1", "number of segment springs"},
+    {"ends", "1", "1: springs at the face ends (M13.2, N = 2); 0: at the segment centres (M13.1)"},
+    {"theta", "rad", "rotation about the element's centre, counter-clockwise positive"}};
 }  // namespace argument
 
 // The arguments of the onset solvers (ref/base_friction_onset.hpp).
@@ -191,26 +197,17 @@ std::vector<Entry> contact_entries() {
      [](const Args& a) { return spring_layer_moment(a("k"), a("a"), a("theta")); }},
     {{"face.rotation_wall_fx",
       "force along the wall of a bonded face turned rigidly by theta about its centre (refs §4.7): sum K_s (s_i (cos theta - 1) + r sin theta)",
-      {{"Kn", "N/m", "normal stiffness of one segment spring"}, {"Ks", "N/m", "shear stiffness of one segment spring"},
-       {"r", "m", "half-length of the face (the element's radius)"}, {"N", "1", "number of segment springs"},
-       {"ends", "1", "1: springs at the face ends (M13.2, N = 2); 0: at the segment centres (M13.1)"},
-       {"theta", "rad", "rotation about the element's centre, counter-clockwise positive"}},
+      argument::face_rotation,
       "N"},
      [](const Args& a) { return face_rotation_force(a).fx; }},
     {{"face.rotation_wall_fy",
       "force normal to the wall (+: pulled towards the element) of the same face: sum K_n (s_i sin theta + r (1 - cos theta))",
-      {{"Kn", "N/m", "normal stiffness of one segment spring"}, {"Ks", "N/m", "shear stiffness of one segment spring"},
-       {"r", "m", "half-length of the face (the element's radius)"}, {"N", "1", "number of segment springs"},
-       {"ends", "1", "1: springs at the face ends (M13.2, N = 2); 0: at the segment centres (M13.1)"},
-       {"theta", "rad", "rotation about the element's centre, counter-clockwise positive"}},
+      argument::face_rotation,
       "N"},
      [](const Args& a) { return face_rotation_force(a).fy; }},
     {{"face.rotation_moment_wall_frame",
       "moment about its centre on an element whose bonded face is turned rigidly by theta, the spring forces acting at the wall's points (M19; refs §4.7)",
-      {{"Kn", "N/m", "normal stiffness of one segment spring"}, {"Ks", "N/m", "shear stiffness of one segment spring"},
-       {"r", "m", "half-length of the face (the element's radius)"}, {"N", "1", "number of segment springs"},
-       {"ends", "1", "1: springs at the face ends (M13.2, N = 2); 0: at the segment centres (M13.1)"},
-       {"theta", "rad", "rotation about the element's centre, counter-clockwise positive"}},
+      argument::face_rotation,
       "N m"},
      [](const Args& a) { return face_rotation_force(a).moment; }},
     {{"rest.overlap",
