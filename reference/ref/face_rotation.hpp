@@ -7,8 +7,9 @@
 // and the spring pulls the wall towards the element's point with (K_s d_x,i, K_n d_y,i): the force of
 // the element on the wall is the sum. The element feels the opposite force; where it acts is a model
 // choice: at the wall's points (s_i, 0) (the paper's wall frame, M19), its moment about the centre is
-//   M = Σ [ s_i (−K_n d_y,i) − (−r)(−K_s d_x,i) ] = −Σ (s_i K_n d_y,i + r K_s d_x,i). Positions s_i = r ξ_i, at the segment centres
-// ξ_i = (2i − 1 − N)/N (M13.1) or, N = 2, at the face ends ξ = ±1 (M13.2).
+//   M = Σ [ s_i (−K_n d_y,i) − (−r)(−K_s d_x,i) ] = −Σ (s_i K_n d_y,i + r K_s d_x,i).
+// Positions s_i = r ξ_i, at the segment centres ξ_i = (2i − 1 − N)/N (M13.1) or, N = 2, at the face
+// ends ξ = ±1 (M13.2).
 // This is the geometry of a rigid rotation, written with a rotation matrix and not with the paper's
 // M2: the exact displacement M2.1, M2.2 (consistent reading) must equal it, and the linearised M14
 // misses its O(θ²) terms (no lift of the face, r θ instead of r sin θ along it).
