@@ -43,7 +43,7 @@ TEST_CASE("Beam: the square lattice is orthotropic with E = kn, G = ks/2, nu = 0
   CHECK(m.shear_modulus == 860e6);
   CHECK(m.poisson == 0.0);
   // Beam stiffness of the lattice: EB 44 032 N/mm; Timoshenko 22 465 N/mm (paper constants) and
-  // 22 391 N/mm (M25's exact constants 4285.7, 1714.3 → G_eff = 857.1).
+  // 22 391 N/mm (M25.l's exact constants 4285.7, 1714.3 → G_eff = 857.1).
   CHECK_THAT(ref::euler_bernoulli_stiffness(prism, m.young) * mm, WithinRel(44032.0, 1e-5));
   CHECK_THAT(ref::timoshenko_stiffness(prism, m.young, m.shear_modulus, 5.0 / 6.0) * mm, WithinRel(22465.0, 3e-5));
   const auto exact = ref::square_lattice_moduli(E * 15.0 / 14.0, 0.4 * E * 15.0 / 14.0);

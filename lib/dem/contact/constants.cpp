@@ -30,7 +30,7 @@ double damping_ratio_from_restitution(double e) {
 
 double pre_pair_time_step(double h_n, double m, double k) { return h_n * std::sqrt(m / k); }  // (M26)
 
-double lattice_kn(double e, double nu) { return (1.0 - nu) * e / ((1.0 + nu) * (1.0 - 2.0 * nu)); }  // (M25)
+double lattice_kn(double e, double nu) { return (1.0 - nu) * e / ((1.0 + nu) * (1.0 - 2.0 * nu)); }  // (M25.l)
 double lattice_ks(double e, double nu) { return (1.0 - 2.0 * nu) * lattice_kn(e, nu) / (2.0 * (1.0 - nu)); }
 
 }  // namespace dem

@@ -1,5 +1,5 @@
 #pragma once
-// Helpers for contact constants (docs/model.md §1 "Constants", §2 (M25), docs/references.md §1.2, §5).
+// Helpers for contact constants (docs/model.md §1 "Constants", §2 (M25.l), docs/references.md §1.2, §5).
 
 namespace dem {
 
@@ -20,7 +20,7 @@ double restitution_from_damping_ratio(double zeta);
 /// Inverse of the above: ζ = −ln e / √(π² + ln² e).
 double damping_ratio_from_restitution(double e);
 
-/// Square-lattice constants from E, ν (M25, the second (25) of the paper):
+/// Square-lattice constants from E, ν (M25.l, the second (25) of the paper):
 /// k_n = (1−ν)E/((1+ν)(1−2ν)), k_s = (1−2ν)k_n/(2(1−ν)) [Pa].
 double lattice_kn(double youngs_modulus, double poisson);
 double lattice_ks(double youngs_modulus, double poisson);

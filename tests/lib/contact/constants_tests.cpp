@@ -51,7 +51,7 @@ TEST_CASE("Damping ratio and restitution are inverse (convention A)", "[constant
   CHECK_THROWS(dem::damping_ratio_from_restitution(1.5));
 }
 
-TEST_CASE("M25 lattice constants for the mortar", "[constants]") {
+TEST_CASE("M25.l lattice constants for the mortar", "[constants]") {
   // E = 4000 N/mm², ν = 1/6: k_n = 4285.714, k_s = 1714.286 N/mm² (docs/model.md §2; the paper rounds).
   CHECK_THAT(dem::lattice_kn(4000.0, 1.0 / 6.0), WithinRel(4285.714285714286, 1e-12));
   CHECK_THAT(dem::lattice_ks(4000.0, 1.0 / 6.0), WithinRel(1714.285714285714, 1e-12));
