@@ -341,11 +341,29 @@ TEST_CASE("face: a turn of element 1 gives P_e(i) = -K_n a xi_i dtheta and a res
   CHECK(m1 * dth < 0.0);  // restoring
 }
 
+namespace {
+
+/// Each segment's springs hold the displacement of element 1 turned by θ1 and element 2 by θ2, centres
+/// fixed (M2.1, and M2.2 without v̄; element 2's point at (−r2, aξ) from its centre turns the other way):
+///   u(ξ) = −r1(1 − cos θ1) − r2(1 − cos θ2) − aξ(sin θ1 − sin θ2)
+///   v(ξ) =  r1 sin θ1 + r2 sin θ2 + aξ(cos θ1 − cos θ2)
+void check_finite_rotation(const dem::FaceHistory& h, dem::SegmentPositions positions, int n, double r1, double r2,
+                           double t1, double t2) {
+  for (int i = 0; i < n; ++i) {
+    const double xi = dem::segment_xi(positions, n, i);
+    const double u = -r1 * (1 - std::cos(t1)) - r2 * (1 - std::cos(t2)) - a * xi * (std::sin(t1) - std::sin(t2));
+    const double v = r1 * std::sin(t1) + r2 * std::sin(t2) + a * xi * (std::cos(t1) - std::cos(t2));
+    CAPTURE(i, xi);
+    CHECK_THAT(h.seg[static_cast<std::size_t>(i)].pe, WithinAbs(kn * u, 1e-12 * kn * a));
+    CHECK_THAT(h.seg[static_cast<std::size_t>(i)].qe, WithinAbs(ks * v, 1e-12 * ks * a));
+  }
+}
+
+}  // namespace
+
 TEST_CASE("face: the exact increments follow the finite-rotation displacements (M2, M3) path-independently", "[face]") {
-  // Element 1 turns by θ in m unequal steps, element 2 turns by −θ/2, the centres stay (frame fixed).
-  // Expected per segment (header; element 2's point at (−r2, aξ) from its centre turns the other way):
-  //   u(ξ) = −r1(1 − cos θ1) − r2(1 − cos θ2) − aξ(sin θ1 − sin θ2)
-  //   v(ξ) =  r1 sin θ1 + r2 sin θ2 + aξ(cos θ1 − cos θ2)
+  // Element 1 turns by θ in m unequal steps, element 2 turns by −θ/2, the centres stay (frame fixed);
+  // expected: check_finite_rotation above.
   const int n = 3;
   auto law = face_law(n);
   law.normal = dem::NormalIncrement::exact;
@@ -361,15 +379,7 @@ TEST_CASE("face: the exact increments follow the finite-rotation displacements (
     k.dphi2 = -0.5 * p * theta;
     dem::face_contact_force(law, c, k, inv_dt, h);
   }
-  const double t1 = theta, t2 = -0.5 * theta;
-  for (int i = 0; i < n; ++i) {
-    const double xi = dem::segment_xi(law.positions, n, i);
-    const double u = -r1 * (1 - std::cos(t1)) - r2 * (1 - std::cos(t2)) - a * xi * (std::sin(t1) - std::sin(t2));
-    const double v = r1 * std::sin(t1) + r2 * std::sin(t2) + a * xi * (std::cos(t1) - std::cos(t2));
-    CAPTURE(i, xi);
-    CHECK_THAT(h.seg[static_cast<std::size_t>(i)].pe, WithinAbs(kn * u, 1e-12 * kn * a));
-    CHECK_THAT(h.seg[static_cast<std::size_t>(i)].qe, WithinAbs(ks * v, 1e-12 * ks * a));
-  }
+  check_finite_rotation(h, law.positions, n, r1, r2, theta, -0.5 * theta);
 }
 
 TEST_CASE("face: exact increments tend to the linearised ones as the rotation goes to zero, error O(theta^2)",
@@ -453,6 +463,32 @@ TEST_CASE("face: the literal reading of (M3.2) counts the rotation twice, Hisata
     CHECK_THAT(literal[i] - exact[i], WithinAbs(r1 * t1 + r2 * t2, 1e-15));  // the extra r θ of (M2.4)
     CHECK_THAT(exact[i] - hisatake[i], WithinAbs(3e-4, 1e-15));              // the translation v̄
   }
+}
+
+TEST_CASE("face: Hisatake's increments (M16) summed over a finite path give M2.2 minus the translation v-bar",
+          "[face]") {
+  // The paper: Hisatake's displacements are M2.1 − rξ² and M2.2 − v̄. The tangential half, over a
+  // path of unequal steps that both slides (v₁ − v₂ grows by 2e-4 m) and turns (θ1 = 0.6, θ2 = −0.25),
+  // the springs hold check_finite_rotation's v(ξ): M2.2 without v̄, no translation at all.
+  // The −rξ² of u does not change in time, so it has no increment: M16's law keeps M3.1 for the normal,
+  // u = M2.1 from the start of contact (the constant would only offset the springs' start).
+  const int n = 3;
+  auto law = face_law(n);
+  law.normal = dem::NormalIncrement::exact;
+  law.tangential = dem::TangentialIncrement::hisatake;
+  const auto c = constants(n);
+  const double r1 = 0.012, r2 = a, t1 = 0.6, t2 = -0.25, slide = 2e-4;
+  dem::FaceHistory h;
+  dem::start_face(law, c, 0.0, true, /*geometric=*/false, h);
+  for (double p : {0.2, 0.05, 0.3, 0.15, 0.1, 0.2}) {  // sums to 1
+    auto k = normal_step(0.0, r1, r2);
+    k.dphi1 = p * t1;
+    k.dphi2 = p * t2;
+    k.dv_translation = p * slide;
+    k.dv_frame = p * slide;
+    dem::face_contact_force(law, c, k, inv_dt, h);
+  }
+  check_finite_rotation(h, law.positions, n, r1, r2, t1, t2);
 }
 
 // ---- frame objectivity (docs/model.md §2: "a rigid-body rotation of a bonded pair produces no force") ----
