@@ -42,6 +42,8 @@ const std::vector<OracleCase> kCases = {
      {"numerics.reorder_every=1"}, 600},
     {"disks in a box pushed by a driven disk (K19, rebuilds)", "tests/lib/fixtures/restart_disks.toml", {}, 3000},
     {"a disk on a slope, staggered start", "cases/bench/disk_on_slope.toml", {"numerics.velocity_start=staggered"}, 500},
+    {"a disk rolling off a wall's end: the contact opens while it overlaps (K8) and starts again",
+     "tests/lib/fixtures/disk_off_wall_end.toml", {}, 900},
 };
 
 }  // namespace
