@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -186,6 +187,39 @@ TEST_CASE("picture: a contact line lies between the centres, its width proportio
   o.max_force = 2.0 * ab.fn;
   const dem::ForcePicture fixed = dem::draw_force_network(sim, o);
   CHECK(dark_in_column(fixed.canvas, x_ab, y - 40, y + 40) == Approx(6).margin(1));
+}
+
+TEST_CASE("picture: the legend's sample line stands clear of its label - which follows it on the same row", "[picture]") {
+  const auto path = test::write_temp("picture_legend.toml", row_case(""));
+  dem::Case c = dem::read_case(path);
+  dem::Simulation sim(c.model);
+  sim.step();
+  dem::PictureOptions o;
+  o.width = 800;  // legend scale s = 2
+  o.max_line = 12.0;
+  const dem::ForcePicture pic = dem::draw_force_network(sim, o);
+  // The legend under the scene: a text row (10 s px) 2 s below the scene, then the sample band: the
+  // sample line, max_line wide from x = 4 s (its round caps included) over 24 s px plus the caps, its label
+  // 6 s px after it, on the band's middle.
+  const int s = 2, line_h = 10 * s, x = 4 * s;
+  const double cap = 0.5 * std::max(pic.max_line, 1.0);
+  const int sample_h = std::max(line_h, static_cast<int>(std::ceil(pic.max_line)) + 4 * s);
+  const int top = pic.frame.scene_height + 2 * s + line_h, mid = top + sample_h / 2;
+  const int line_end = static_cast<int>(std::ceil(x + 2 * cap + 24 * s));
+  const auto dark = [&](int col, int row) { return pic.canvas.at(col, row).r < 160; };
+  for (int col = static_cast<int>(x + cap); col <= static_cast<int>(x + cap + 24 * s); ++col) {
+    CAPTURE(col);
+    CHECK(dark(col, mid));  // the sample line
+  }
+  int before = 0, in_gap = 0, label = 0;
+  for (int row = top; row < top + sample_h; ++row) {
+    for (int col = 0; col < x - 1; ++col) before += dark(col, row);
+    for (int col = line_end + 2; col < line_end + 5 * s; ++col) in_gap += dark(col, row);
+    for (int col = line_end + 5 * s; col < line_end + 40 * s; ++col) label += dark(col, row);
+  }
+  CHECK(before == 0);  // nothing left of the line
+  CHECK(in_gap == 0);  // a clear gap between the line and its label
+  CHECK(label > 0);    // the label follows the gap
 }
 
 TEST_CASE("picture: removed elements and their contacts are not drawn", "[picture]") {
