@@ -280,3 +280,26 @@ TEST_CASE("Morris effects of a linear model are exact and sigma is zero", "[sens
   const MorrisEffects m2 = morris_effects(tr, y, 3);
   CHECK(m2.effects[tr[0].order[0]] + m2.effects[tr[0].order[1]] == 22);
 }
+
+TEST_CASE("percentile: position q (n - 1) of the sorted values - linear between the two around it", "[sensitivity]") {
+  // Unequal gaps, so that the interpolation's neighbour and sign matter; unsorted input.
+  const std::vector<double> v = {100.0, 0.0, 10.0, 1.0};  // sorted: 0, 1, 10, 100 at positions 0…3
+  CHECK(percentile(v, 0.0) == 0.0);
+  CHECK(percentile(v, 1.0) == 100.0);
+  CHECK_THAT(percentile(v, 0.5), Catch::Matchers::WithinAbs(5.5, 1e-14));   // 1.5: 1 + 0.5 (10 − 1)
+  CHECK_THAT(percentile(v, 0.1), Catch::Matchers::WithinAbs(0.3, 1e-14));   // 0.3: 0 + 0.3 (1 − 0)
+  CHECK_THAT(percentile(v, 0.9), Catch::Matchers::WithinAbs(73.0, 1e-12));  // 2.7: 10 + 0.7 (100 − 10)
+  CHECK(percentile({7.0}, 0.25) == 7.0);
+}
+
+TEST_CASE("sobol_indices: the three estimators on three rows by hand", "[sensitivity]") {
+  // f(A) = 1, 2, 4; f(B) = 0, 3, 1; f(AB_1) = 2, 2, 6. Mean of A and B 11/6, variance (2n − 1) 13/6.
+  // Saltelli's first order Σ f_B (f_AB − f_A) / n / V = (2/3) / (13/6) = 4/13; Jansen's total
+  // Σ (f_A − f_AB)² / 2n / V = (5/6) / (13/6) = 5/13; Janon's first order with Σ f_B f_AB / n = 4,
+  // m = Σ (f_B + f_AB) / 2n = 7/3, Σ (f_B² + f_AB²) / 2n = 9: (4 − 49/9) / (9 − 49/9) = −13/32.
+  const SobolIndices s = sobol_indices({1.0, 2.0, 4.0}, {0.0, 3.0, 1.0}, {{2.0, 2.0, 6.0}}, 0);
+  REQUIRE(s.first.size() == 1);
+  CHECK_THAT(s.first[0].estimate, Catch::Matchers::WithinAbs(4.0 / 13.0, 1e-15));
+  CHECK_THAT(s.total[0].estimate, Catch::Matchers::WithinAbs(5.0 / 13.0, 1e-15));
+  CHECK_THAT(s.first_janon[0].estimate, Catch::Matchers::WithinAbs(-13.0 / 32.0, 1e-15));
+}

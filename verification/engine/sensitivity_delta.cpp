@@ -1,4 +1,5 @@
 #include "engine/sensitivity_delta.hpp"
+#include "engine/sensitivity_estimators.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -82,13 +83,6 @@ double histogram_hat(const std::vector<double>& x, const std::vector<double>& y,
 }
 
 using Hat = double (*)(const std::vector<double>&, const std::vector<double>&, std::vector<std::size_t>, const std::vector<double>&, std::size_t);
-
-double percentile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const std::size_t k = static_cast<std::size_t>(std::floor(pos));
-  return k + 1 >= v.size() ? v.back() : v[k] + (pos - static_cast<double>(k)) * (v[k + 1] - v[k]);
-}
 
 }  // namespace
 

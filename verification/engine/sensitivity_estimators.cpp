@@ -52,15 +52,15 @@ Point estimate(const std::vector<double>& fa, const std::vector<double>& fb, con
   return p;
 }
 
-double quantile(std::vector<double> v, double q) {
+}  // namespace
+
+double percentile(std::vector<double> v, double q) {
   std::sort(v.begin(), v.end());
   const double pos = q * static_cast<double>(v.size() - 1);
   const std::size_t k = static_cast<std::size_t>(std::floor(pos));
   if (k + 1 >= v.size()) return v.back();
   return v[k] + (pos - static_cast<double>(k)) * (v[k + 1] - v[k]);
 }
-
-}  // namespace
 
 SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<double>& fb,
                            const std::vector<std::vector<double>>& fab, std::size_t resamples, double confidence,
@@ -114,12 +114,12 @@ SobolIndices sobol_indices(const std::vector<double>& fa, const std::vector<doub
   }
   const double lo = 0.5 * (1.0 - confidence), hi = 1.0 - lo;
   for (std::size_t i = 0; i < d; ++i) {
-    out.first[i] = {p.first[i], resamples ? quantile(bs_first[i], lo) : p.first[i],
-                    resamples ? quantile(bs_first[i], hi) : p.first[i]};
-    out.total[i] = {p.total[i], resamples ? quantile(bs_total[i], lo) : p.total[i],
-                    resamples ? quantile(bs_total[i], hi) : p.total[i]};
-    out.first_janon[i] = {p.first_janon[i], resamples ? quantile(bs_janon[i], lo) : p.first_janon[i],
-                          resamples ? quantile(bs_janon[i], hi) : p.first_janon[i]};
+    out.first[i] = {p.first[i], resamples ? percentile(bs_first[i], lo) : p.first[i],
+                    resamples ? percentile(bs_first[i], hi) : p.first[i]};
+    out.total[i] = {p.total[i], resamples ? percentile(bs_total[i], lo) : p.total[i],
+                    resamples ? percentile(bs_total[i], hi) : p.total[i]};
+    out.first_janon[i] = {p.first_janon[i], resamples ? percentile(bs_janon[i], lo) : p.first_janon[i],
+                          resamples ? percentile(bs_janon[i], hi) : p.first_janon[i]};
   }
   return out;
 }
@@ -270,7 +270,7 @@ MorrisEffects morris_effects(const std::vector<MorrisTrajectory>& tr, const std:
     }
     auto interval = [&](double est, const std::vector<double>& boot) -> Interval {
       if (boot.empty() || !std::isfinite(est)) return {est, est, est};
-      return {est, quantile(boot, lo), quantile(boot, hi)};
+      return {est, percentile(boot, lo), percentile(boot, hi)};
     };
     m.mu_ci.push_back(interval(st.mu, b_mu));
     m.mu_star_ci.push_back(interval(st.mu_star, b_star));

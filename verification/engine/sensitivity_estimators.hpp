@@ -64,6 +64,10 @@ SobolAsymptoticSd sobol_asymptotic_sd(const std::vector<double>& fa, const std::
 /// The standard normal quantile z with Φ(z) = p (0 < p < 1): Acklam's approximation and one Halley step (round-off).
 double normal_quantile(double p);
 
+/// The q-quantile of v (0 ≤ q ≤ 1) between its order statistics: position q (n − 1) of the sorted values,
+/// linear between the two around it (Hyndman & Fan's type 7). The bootstrap percentile intervals use it.
+double percentile(std::vector<double> v, double q);
+
 struct MorrisEffects {
   std::vector<double> mu, mu_star, sigma;  // per parameter: mean, mean |EE|, standard deviation (r − 1)
   std::vector<std::size_t> effects;        // elementary effects used per parameter

@@ -2,6 +2,7 @@
 // variance over the samples of a study with replicates, its table, indices.csv rows and, for a test
 // function with added noise of known variance, the checks against the exact noise fraction.
 #include "engine/sensitivity_noise.hpp"
+#include "engine/sensitivity_estimators.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -35,13 +36,6 @@ Split split_of(const std::vector<double>& means, const std::vector<double>& with
   const double effect = var - noise / r;  // the noise left in the means: σ²_noise / R
   const double total = effect + noise;
   return {noise, effect, total > 0.0 ? noise / total : std::nan("")};
-}
-
-double percentile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const std::size_t k = static_cast<std::size_t>(std::floor(pos));
-  return k + 1 >= v.size() ? v.back() : v[k] + (pos - static_cast<double>(k)) * (v[k + 1] - v[k]);
 }
 
 std::uint64_t splitmix64(std::uint64_t x) {

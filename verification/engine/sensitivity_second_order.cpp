@@ -1,4 +1,5 @@
 #include "engine/sensitivity_second_order.hpp"
+#include "engine/sensitivity_estimators.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -34,14 +35,6 @@ std::vector<double> second_order_at(const std::vector<double>& fa, const std::ve
       out.push_back(var > 0.0 ? c / n / var - first[j] - first[k] : 0.0);
     }
   return out;
-}
-
-double percentile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const auto k = static_cast<std::size_t>(std::floor(pos));
-  if (k + 1 >= v.size()) return v.back();
-  return v[k] + (pos - static_cast<double>(k)) * (v[k + 1] - v[k]);
 }
 
 }  // namespace
