@@ -1,6 +1,7 @@
 // A study figure of wall contacts against depth (engine/study_wall_profile.hpp): the strict reader of a
 // run's wall_contacts.csv, the figure's data from a known file (signs as written, the mobilisation
-// |fs| / (mu_w fn), only the named walls), and the study-file keys refused where they do not belong.
+// |fs| / (mu_w fn), only the named walls, each listed variant from its own run), and the study-file keys
+// refused where they do not belong.
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +10,7 @@
 
 #include "dem/cases/case_file.hpp"
 #include "engine/study_file.hpp"
+#include "engine/study_run.hpp"
 #include "engine/study_wall_profile.hpp"
 
 namespace fs = std::filesystem;
@@ -130,4 +132,37 @@ TEST_CASE("A figure of walls reads, and its keys are refused where they do not b
   CHECK_THAT(study_refusal("y = \"t\"\ncomponent = \"fn\"\n"), Contains("needs walls"));
   CHECK_THAT(study_refusal("walls = [\"left\"]\ncomponent = \"fn\"\ny_from_start = true\n"),
              Contains("y_from_start") && Contains("not for a figure of walls"));
+}
+
+TEST_CASE("A figure of walls draws each listed variant from its own run's wall contacts - the last one too", "[wall_profile]") {
+  // Three variants, each run's wall_contacts.csv with its own normal force; the figure lists all three,
+  // then the first and the last. Each curve is its variant's file, in the variants' order.
+  const std::string text = "[study]\ntitle = \"t\"\ncase = \"" + kSilo + "\"\nkind = \"single\"\n"
+                           "[[variant]]\nlabel = \"a\"\nset = []\n[[variant]]\nlabel = \"b\"\nset = []\n"
+                           "[[variant]]\nlabel = \"c\"\nset = []\n"
+                           "[[check]]\nprobe = \"walls_fx\"\nvalue = 0.0\ntolerance = 1e-9\nreason = \"r\"\n"
+                           "[[figure]]\nid = \"p\"\nwalls = [\"left\"]\ncomponent = \"fn\"\n"
+                           "[[figure]]\nid = \"q\"\nwalls = [\"left\"]\ncomponent = \"fn\"\nvariants = [\"a\", \"c\"]\n";
+  const fs::path file = write("study.toml", text);
+  const ver::Study s = ver::read_study(file);
+  REQUIRE(s.figures.size() == 2);
+  const fs::path out = file.parent_path() / "out";
+  for (int k = 0; k < 3; ++k) {
+    fs::create_directories(out / "runs" / ("variant" + std::to_string(k)));
+    std::ofstream(out / "runs" / ("variant" + std::to_string(k)) / "wall_contacts.csv")
+        << kHeader << "left,0.1,0,0.3,0.1," << 10 * (k + 1) << ",0\n";
+  }
+  const ver::StudyOptions opt;
+  ver::StudyRun run{s, out, opt};
+  const nlohmann::json all = ver::wall_profile_curves(run, s.figures[0]);
+  REQUIRE(all.size() == 3);
+  for (int k = 0; k < 3; ++k) {
+    CAPTURE(k);
+    CHECK(all[k]["y"] == std::vector<double>{10.0 * (k + 1)});
+    CHECK(all[k]["label"].get<std::string>().find(std::string(1, static_cast<char>('a' + k))) != std::string::npos);
+  }
+  const nlohmann::json two = ver::wall_profile_curves(run, s.figures[1]);
+  REQUIRE(two.size() == 2);
+  CHECK(two[0]["y"] == std::vector<double>{10.0});
+  CHECK(two[1]["y"] == std::vector<double>{30.0});
 }

@@ -101,7 +101,7 @@ nlohmann::json series_curves(const StudyRun& run, const Figure& f) {
   std::map<std::string, double> ref_args = f.args;
   std::map<std::string, std::vector<std::map<std::string, double>>> drawn_references;  // per solver: its arguments
   for (std::size_t vi = 0; vi < s.variants.size(); ++vi) {
-    const Variant& v = s.variants[vi];
+    const Variant& v = s.variants.at(vi);  // checked: not hot, and an index past the end throws
     if (!listed(f.variants, v.label)) continue;
     const fs::path csv = run.out / "runs" / fmt::format("variant{}", vi) / "series.csv";
     std::ifstream in(csv);

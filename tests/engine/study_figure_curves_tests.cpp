@@ -1,0 +1,49 @@
+// A study figure of time series (engine/study_run.hpp, draw_figures): each listed variant's curve is
+// read from that variant's own run (runs/variant<k>/series.csv), the last variant included, in the
+// variants' order, and only the listed ones.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+#include "engine/study_file.hpp"
+#include "engine/study_run.hpp"
+
+namespace fs = std::filesystem;
+
+TEST_CASE("A series figure draws each listed variant from its own run - the last one too", "[figures]") {
+  const fs::path dir = fs::temp_directory_path() / "dem2d_unit_figure_curves" / std::to_string(::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string silo = std::string(DEM2D_SOURCE_DIR) + "/cases/silo/static_ordered.toml";
+  std::ofstream(dir / "study.toml") << "[study]\ntitle = \"t\"\ncase = \"" << silo << "\"\nkind = \"single\"\n"
+                                    << "[[variant]]\nlabel = \"a\"\nset = []\n[[variant]]\nlabel = \"b\"\nset = []\n"
+                                    << "[[variant]]\nlabel = \"c\"\nset = []\n"
+                                    << "[[check]]\nprobe = \"walls_fx\"\nvalue = 0.0\ntolerance = 1e-9\nreason = \"r\"\n"
+                                    << "[[figure]]\nid = \"all\"\nx = \"t\"\ny = \"e0.y\"\n"
+                                    << "[[figure]]\nid = \"ends\"\nx = \"t\"\ny = \"e0.y\"\nvariants = [\"a\", \"c\"]\n";
+  const ver::Study s = ver::read_study(dir / "study.toml");
+  REQUIRE(s.figures.size() == 2);
+  const fs::path out = dir / "out";
+  for (int k = 0; k < 3; ++k) {  // variant k: e0.y = k + 1 at t = 0 and k + 2 at t = 1
+    const fs::path run = out / "runs" / ("variant" + std::to_string(k));
+    fs::create_directories(run);
+    std::ofstream(run / "series.csv") << "t [s],e0.y [m]\n0," << k + 1 << "\n1," << k + 2 << "\n";
+  }
+  const ver::StudyOptions opt;
+  ver::StudyRun run{s, out, opt};
+  const nlohmann::json figures = ver::draw_figures(run);
+  REQUIRE(figures.size() == 2);
+  const nlohmann::json& all = figures[0]["curves"];
+  REQUIRE(all.size() == 3);
+  for (int k = 0; k < 3; ++k) {
+    CAPTURE(k);
+    CHECK(all[k]["label"] == "DEM " + std::string(1, static_cast<char>('a' + k)));
+    CHECK(all[k]["y"] == std::vector<double>{k + 1.0, k + 2.0});
+  }
+  const nlohmann::json& ends = figures[1]["curves"];
+  REQUIRE(ends.size() == 2);
+  CHECK(ends[0]["y"] == std::vector<double>{1.0, 2.0});
+  CHECK(ends[1]["y"] == std::vector<double>{3.0, 4.0});
+}
