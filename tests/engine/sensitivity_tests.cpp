@@ -303,3 +303,20 @@ TEST_CASE("sobol_indices: the three estimators on three rows by hand", "[sensiti
   CHECK_THAT(s.total[0].estimate, Catch::Matchers::WithinAbs(5.0 / 13.0, 1e-15));
   CHECK_THAT(s.first_janon[0].estimate, Catch::Matchers::WithinAbs(-13.0 / 32.0, 1e-15));
 }
+
+TEST_CASE("exact Morris values of a linear model: per input - none for a non-uniform input that has an effect", "[sensitivity]") {
+  // f = 2 x1 + 0 x2 + 3 x3: x1 uniform on [0, 1]; x2 log-uniform on [1, 100] but without effect; x3 not
+  // linear in its unit coordinate (e.g. normal) with an effect: its elementary effects vary.
+  const TestFunction f{"linear", {2.0, 0.0, 3.0}};
+  const ExactIndices e = exact_indices(f, {0.0, 1.0, 0.0}, {1.0, 100.0, 2.0}, {1.0 / 12.0, 700.0, 0.25}, {true, false, false});
+  REQUIRE(e.morris_mu_star.size() == 3);
+  CHECK(e.morris_mu_star[0] == 2.0);
+  CHECK(e.morris_sigma[0] == 0.0);
+  CHECK(e.morris_mu_star[1] == 0.0);
+  CHECK(e.morris_sigma[1] == 0.0);
+  CHECK(std::isnan(e.morris_mu_star[2]));
+  CHECK(std::isnan(e.morris_sigma[2]));
+  // All uniform (no variances, no flags): |c_i| (high − low) for each.
+  const ExactIndices u = exact_indices(f, {0.0, 1.0, 0.0}, {1.0, 100.0, 2.0});
+  CHECK(u.morris_mu_star == std::vector<double>{2.0, 0.0, 6.0});
+}

@@ -463,8 +463,9 @@ sens::ExactIndices exact_of(const Sens& s) {
     // Inputs not uniform (linear only, cross_check): Var x_i = ∫₀¹ (Q(u) − mean)² du by the midpoint
     // rule on 2^18 cells (the quantile functions are tested against closed forms in the unit tests).
     std::vector<double> variances;
-    bool uniform = true;
-    for (const auto& p : s.params) uniform = uniform && p.distribution == sens::Distribution::uniform && !p.integer;
+    std::vector<bool> linear_inputs;  // x = low + u (high − low): Morris effects exact (sensitivity_functions.hpp)
+    for (const auto& p : s.params) linear_inputs.push_back(p.distribution == sens::Distribution::uniform && !p.integer);
+    const bool uniform = std::all_of(linear_inputs.begin(), linear_inputs.end(), [](bool b) { return b; });
     if (!uniform)
       for (const auto& p : s.params) {
         constexpr std::size_t cells = std::size_t{1} << 18;
@@ -476,7 +477,7 @@ sens::ExactIndices exact_of(const Sens& s) {
         }
         variances.push_back(m2 - m * m);
       }
-    exact = sens::exact_indices(*s.function, lo, hi, variances);
+    exact = sens::exact_indices(*s.function, lo, hi, variances, linear_inputs);
   }
   return exact;
 }

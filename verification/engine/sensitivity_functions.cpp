@@ -29,7 +29,7 @@ double evaluate(const TestFunction& f, const std::vector<double>& x) {
 }
 
 ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low, const std::vector<double>& high,
-                           const std::vector<double>& variances) {
+                           const std::vector<double>& variances, const std::vector<bool>& linear_inputs) {
   ExactIndices e;
   const std::size_t d = dimension(f);
   if (f.name == "ishigami") {
@@ -67,9 +67,9 @@ ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low
       const double w = high.at(i) - low.at(i);
       vi[i] = f.coefficients[i] * f.coefficients[i] * (variances.empty() ? w * w / 12.0 : variances.at(i));
       var += vi[i];
-      if (!variances.empty()) continue;  // not uniform: the elementary effects vary
-      e.morris_mu_star.push_back(std::abs(f.coefficients[i]) * w);
-      e.morris_sigma.push_back(0.0);
+      const bool exact = linear_inputs.empty() || linear_inputs.at(i) || f.coefficients[i] == 0.0;
+      e.morris_mu_star.push_back(exact ? std::abs(f.coefficients[i]) * w : std::nan(""));
+      e.morris_sigma.push_back(exact ? 0.0 : std::nan(""));
     }
     e.variance = var;
     for (std::size_t i = 0; i < d; ++i) {

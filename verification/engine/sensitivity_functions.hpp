@@ -24,15 +24,18 @@ double evaluate(const TestFunction& f, const std::vector<double>& x);
 /// The exact indices, where known (ranges as the definitions above; for linear: uniform ranges).
 struct ExactIndices {
   std::vector<double> first, total;
-  std::vector<double> morris_mu_star, morris_sigma;  // linear only
+  std::vector<double> morris_mu_star, morris_sigma;  // linear only; NaN for an input without an exact value
   /// second[i][j] (i < j): the closed second-order index S_ij = V_ij / V (Ishigami: only S_13 =
   /// 8 b² π⁸ / 225 / V; g: V_i V_j / V; linear: 0). Empty where unknown (ln f).
   std::vector<std::vector<double>> second;
   double variance = std::nan("");  // Var f over the inputs' distributions (NaN where unknown)
 };
-/// linear with `variances` (one per input, any distribution): S_i = S_Ti = c_i² Var x_i / Σ, no Morris values.
+/// linear with `variances` (one per input, any distribution): S_i = S_Ti = c_i² Var x_i / Σ. Its Morris
+/// values: an input whose value is linear in its unit coordinate (`linear_inputs[i]`: uniform, not integer;
+/// empty: all) has every elementary effect c_i (high − low), μ* = |c_i| (high − low), σ = 0; so has one with
+/// c_i = 0 (every effect 0); any other input's effects vary: NaN, no exact value.
 ExactIndices exact_indices(const TestFunction& f, const std::vector<double>& low, const std::vector<double>& high,
-                           const std::vector<double>& variances = {});
+                           const std::vector<double>& variances = {}, const std::vector<bool>& linear_inputs = {});
 
 /// The exact indices of ln f where known: the g-function with every a_i > 0, whose logarithm
 /// ln g = Σ ln(|4 x_i − 2| + a_i) − ln(1 + a_i) is additive, so S_i = S_Ti = V_i / Σ V_j with

@@ -2,6 +2,7 @@
 // parameter and output (indices.csv, a table, a μ*–σ figure), checked against the exact effects of a
 // linear test function.
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <numbers>
 #include <tuple>
@@ -51,18 +52,21 @@ void analyse_morris(const Plan& plan, const ExactIndices& exact, Analysis& an) {
     const MorrisEffects m = morris_effects(traj, f, d, s.morris_resamples, s.morris_confidence);
     nlohmann::json curves = nlohmann::json::array(), labels = nlohmann::json::array();
     for (std::size_t i = 0; i < d; ++i) {
+      // The exact μ* where the function has one for this input (a linear model: not for a non-uniform input).
+      const std::optional<double> exact_mu_star = i < exact.morris_mu_star.size() && !std::isnan(exact.morris_mu_star[i])
+                                                      ? std::optional<double>(exact.morris_mu_star[i]) : std::nullopt;
       if (std::isfinite(m.mu_star[i]) && std::isfinite(m.sigma[i]))
         labels.push_back({{"x", m.mu_star[i]}, {"y", m.sigma[i]}, {"text", s.params[i].label}});
       rows.push_back({s.outputs[o], s.params[i].label, num(m.mu_star[i]),
                       fmt::format("[{}, {}]", num(m.mu_star_ci[i].low), num(m.mu_star_ci[i].high)), num(m.mu_star_conf[i]), num(m.mu[i]),
-                      num(m.sigma[i]), std::to_string(m.effects[i]), exact.morris_mu_star.empty() ? "" : num(exact.morris_mu_star[i])});
+                      num(m.sigma[i]), std::to_string(m.effects[i]), exact_mu_star ? num(*exact_mu_star) : ""});
       curves.push_back({{"label", s.params[i].label}, {"x", {jnum(m.mu_star[i])}}, {"y", {jnum(m.sigma[i])}}, {"style", "points"}});
-      const std::string mu_star_exact = exact.morris_mu_star.empty() ? std::string() : fmt::format("{:.17g}", exact.morris_mu_star[i]);
+      const std::string mu_star_exact = exact_mu_star ? fmt::format("{:.17g}", *exact_mu_star) : std::string();
       for (const auto& [index, iv, ex] : {std::tuple{"mu_star", m.mu_star_ci[i], mu_star_exact}, std::tuple{"mu", m.mu_ci[i], std::string()},
                                           std::tuple{"sigma", m.sigma_ci[i], std::string()}})
         an.idx_csv << "morris," << s.outputs[o] << ",\"" << s.params[i].label << "\"," << index << ","
                    << fmt::format("{:.17g},{:.17g},{:.17g},", iv.estimate, iv.low, iv.high) << ex << "\n";
-      if (s.function && s.noise_sd > 0.0 && !exact.morris_mu_star.empty() && exact.morris_mu_star[i] == 0.0) {
+      if (s.function && s.noise_sd > 0.0 && exact_mu_star == 0.0) {
         // An inert input of a noisy function: its |EE| is |ε' − ε|/Δ, ε ~ N(0, σ²/R): μ* = 2σ / (Δ √(π R)).
         const double floor = 2.0 * s.noise_sd / (morris_delta(s.levels) * std::sqrt(std::numbers::pi * static_cast<double>(s.replicates.size())));
         const Interval& iv = m.mu_star_ci[i];
@@ -72,10 +76,10 @@ void analyse_morris(const Plan& plan, const ExactIndices& exact, Analysis& an) {
                      fmt::format("the {:.0f} % bootstrap interval of μ* must contain 2σ/(Δ√(πR))", 100.0 * s.morris_confidence),
                      floor >= iv.low && floor <= iv.high, fmt::format("interval [{}, {}]", num(iv.low), num(iv.high)));
       }
-      if (!exact.morris_mu_star.empty() && s.noise_sd == 0.0) {
-        const double e = std::abs(m.mu_star[i] - exact.morris_mu_star[i]);
-        const double tol = 1e-9 * std::max(1.0, exact.morris_mu_star[i]);
-        an.add_check(fmt::format("Morris μ* of {} ({})", s.params[i].label, s.function->name), exact.morris_mu_star[i],
+      if (exact_mu_star && s.noise_sd == 0.0) {
+        const double e = std::abs(m.mu_star[i] - *exact_mu_star);
+        const double tol = 1e-9 * std::max(1.0, *exact_mu_star);
+        an.add_check(fmt::format("Morris μ* of {} ({})", s.params[i].label, s.function->name), *exact_mu_star,
                      m.mu_star[i], e, tol, "linear model: every elementary effect is exactly c_i (high − low); round-off only",
                      e <= tol, "");
         an.add_check(fmt::format("Morris σ of {} ({})", s.params[i].label, s.function->name), 0.0, m.sigma[i],
