@@ -128,6 +128,9 @@ duration = "10 us"
 )" + output;
 }
 
+/// The three-disk row of row_case as a model, written to `file` and read back.
+dem::Model row_model(const std::string& file) { return dem::read_case(test::write_temp(file, row_case(""))).model; }
+
 /// Dark (contact-line) pixels in the pixel column x between rows y0 and y1.
 int dark_in_column(const dem::Canvas& cv, int x, int y0, int y1) {
   int n = 0;
@@ -155,9 +158,7 @@ TEST_CASE("png: signature, chunk CRCs and the pixels back through inflate", "[pi
 }
 
 TEST_CASE("picture: a contact line lies between the centres, its width proportional to f_n", "[picture]") {
-  const auto path = test::write_temp("picture_row.toml", row_case(""));
-  dem::Case c = dem::read_case(path);
-  dem::Simulation sim(c.model);
+  dem::Simulation sim(row_model("picture_row.toml"));
   sim.step();
   const auto ab = sim.contact(0, 1, false), bc = sim.contact(1, 2, false);
   REQUIRE(ab.fn > 0.0);
@@ -190,9 +191,7 @@ TEST_CASE("picture: a contact line lies between the centres, its width proportio
 }
 
 TEST_CASE("picture: the legend's sample line stands clear of its label - which follows it on the same row", "[picture]") {
-  const auto path = test::write_temp("picture_legend.toml", row_case(""));
-  dem::Case c = dem::read_case(path);
-  dem::Simulation sim(c.model);
+  dem::Simulation sim(row_model("picture_legend.toml"));
   sim.step();
   dem::PictureOptions o;
   o.width = 800;  // legend scale s = 2
@@ -299,9 +298,7 @@ TEST_CASE("picture: a run writes its pictures at the chosen steps, and never an 
 }
 
 TEST_CASE("picture: a broken bond is marked with an orange cross where it broke - nothing where none did", "[picture]") {
-  const auto path = test::write_temp("picture_row_breaks.toml", row_case(""));
-  dem::Case c = dem::read_case(path);
-  dem::Simulation sim(c.model);
+  dem::Simulation sim(row_model("picture_row_breaks.toml"));
   sim.step();
   dem::PictureOptions o;
   o.max_line = 12.0;
