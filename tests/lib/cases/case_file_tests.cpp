@@ -289,3 +289,33 @@ TEST_CASE("case file: the rotated-corner lever is read for a wall law and refuse
                                    Contains("for walls") && Contains("\"aluminium\" and \"aluminium\" can meet"));
   CHECK_THAT(read_error(path.string(), {"contact.1.lever=corner"}), Contains("contact.1.lever") && Contains("rotated_corner"));
 }
+
+TEST_CASE("case file: a radius range of exactly two values - a peak drop strictly inside (0 1) - a mass on every element", "[case]") {
+  const std::string arrangement = "\n[[contact]]\nbetween = [\"sand\", \"sand\"]\nkn = \"1e5 N/m\"\n[[arrangement]]\nkind = \"random\"\nmaterial = \"sand\"\nregion = [[\"-0.5 m\", \"0.1 m\"], "
+                                  "[\"0.5 m\", \"0.5 m\"]]\ncount = 3\nseed = 1\nradius_range = ";
+  const auto range = [&](const std::string& value) {
+    return variant("radius_range.toml", "title = \"minimal\"", "title = \"minimal\"", arrangement + value + "\n").path;
+  };
+  CHECK(dem::read_case(range("[\"0.4 cm\", \"0.6 cm\"]")).model.elements.size() == 4);
+  CHECK_THAT(read_error(range("[\"0.4 cm\", \"0.5 cm\", \"0.6 cm\"]")), Contains("arrangement.0.radius_range: expected [min, max]"));
+  CHECK_THAT(read_error(range("[\"0.4 cm\"]")), Contains("arrangement.0.radius_range: expected [min, max]"));
+  CHECK_THAT(read_error(range("\"0.5 cm\"")), Contains("arrangement.0.radius_range: expected [min, max]"));
+  // [stop] after_peak: the fraction of the peak lost, 0 < drop < 1 (0 would stop at the peak itself)
+  const auto drop = [&](const std::string& value) {
+    return variant("after_peak.toml", "title = \"minimal\"", "title = \"minimal\"",
+                   "\n[stop]\nafter_peak = { quantity = \"e0.y\", drop = " + value + " }\n").path;
+  };
+  CHECK_NOTHROW(dem::read_case(drop("1e-9")));
+  CHECK_NOTHROW(dem::read_case(drop("0.999999999")));
+  for (const char* bad : {"0", "1", "-0.1"}) {
+    CAPTURE(bad);
+    CHECK_THAT(read_error(drop(bad)), Contains("stop.after_peak.drop: expected the fraction of the peak lost"));
+  }
+  // A material without density and an element of it without a mass, listed last: refused by its index.
+  const std::string glass = "\n[[material]]\nname = \"glass\"\n[[contact]]\nbetween = [\"glass\", \"sand\"]\nkn = \"1e5 N/m\"\n"
+                            "[[contact]]\nbetween = [\"glass\", \"steel\"]\nkn = \"1e5 N/m\"\n"
+                            "[[element]]\nmaterial = \"glass\"\nradius = \"1 cm\"\nposition = [\"0.5 m\", \"1 cm\"]\n";
+  CHECK_THAT(read_error(variant("massless_last.toml", "title = \"minimal\"", "title = \"minimal\"", glass).path),
+             Contains("element 1 has no mass"));
+  CHECK_NOTHROW(dem::read_case(variant("massive_last.toml", "title = \"minimal\"", "title = \"minimal\"", glass + "mass = \"0.1 kg\"\n").path));
+}
