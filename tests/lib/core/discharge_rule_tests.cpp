@@ -99,3 +99,10 @@ TEST_CASE("discharge: of two keystones at the same distance the lower id is take
     CHECK(*dem::keystone(m) == (swap ? 1u : 0u));
   }
 }
+
+TEST_CASE("discharge: the slit's ends are exact - a disk over an end is a keystone - one a nanometre beyond is not", "[discharge]") {
+  // The slit runs from x = −2 cm to 2 cm (s = 0 … 1 along it); the disks sit 4 mm above the floor.
+  CHECK(!dem::keystone(silo_floor({{0.02 + 1e-9, 0.004}, {-0.02 - 1e-9, 0.004}, {0.05, 0.004}})).has_value());
+  CHECK(*dem::keystone(silo_floor({{0.05, 0.004}, {0.02, 0.004}})) == 1);
+  CHECK(*dem::keystone(silo_floor({{-0.02, 0.004}, {-0.05, 0.004}})) == 0);
+}
