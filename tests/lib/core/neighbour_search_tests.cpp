@@ -138,3 +138,22 @@ TEST_CASE("neighbour search: a set that shrinks and grows between builds (buffer
     CHECK(as_pairs(found) == all_pairs(e, 0.3));
   }
 }
+
+TEST_CASE("neighbour search: a pair exactly r_i + r_j + skin apart is no candidate - one closer by a hair is", "[search]") {
+  // Radii 0.25 and skin 0.5: the cut is 1 exactly; 0 and 1 are 1 apart (as the oracle: below the cut only),
+  // 2 and 3 are 1 − 2^-10 apart, 4 and 5 are 1 apart along y.
+  dem::Elements e;
+  for (const auto [x, y] : std::vector<std::pair<double, double>>{{0.0, 0.0}, {1.0, 0.0}, {3.0, 0.0}, {3.9990234375, 0.0},
+                                                                  {6.0, 2.0}, {6.0, 3.0}}) {
+    e.x.push_back(x);
+    e.y.push_back(y);
+    e.radius.push_back(0.25);
+    e.active.push_back(1);
+  }
+  dem::NeighbourSearch search;
+  std::vector<dem::CandidatePair> found;
+  search.build(e, 0.5, found);
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>> expected = {{2, 3}};
+  CHECK(as_pairs(found) == expected);
+  CHECK(all_pairs(e, 0.5) == expected);
+}
