@@ -32,7 +32,7 @@ TEST_CASE("A series figure draws each listed variant from its own run - the last
     std::ofstream(run / "series.csv") << "t [s],e0.y [m]\n0," << k + 1 << "\n1," << k + 2 << "\n";
   }
   const ver::StudyOptions opt;
-  ver::StudyRun run{s, out, opt};
+  ver::StudyRun run{.s = s, .out = out, .opt = opt};
   const nlohmann::json figures = ver::draw_figures(run);
   REQUIRE(figures.size() == 2);
   const nlohmann::json& all = figures[0]["curves"];

@@ -153,7 +153,7 @@ TEST_CASE("A figure of walls draws each listed variant from its own run's wall c
         << kHeader << "left,0.1,0,0.3,0.1," << 10 * (k + 1) << ",0\n";
   }
   const ver::StudyOptions opt;
-  ver::StudyRun run{s, out, opt};
+  ver::StudyRun run{.s = s, .out = out, .opt = opt};
   const nlohmann::json all = ver::wall_profile_curves(run, s.figures[0]);
   REQUIRE(all.size() == 3);
   for (int k = 0; k < 3; ++k) {
