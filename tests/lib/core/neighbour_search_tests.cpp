@@ -143,7 +143,7 @@ TEST_CASE("neighbour search: a pair exactly r_i + r_j + skin apart is no candida
   // Radii 0.25 and skin 0.5: the cut is 1 exactly; 0 and 1 are 1 apart (as the oracle: below the cut only),
   // 2 and 3 are 1 − 2^-10 apart, 4 and 5 are 1 apart along y.
   dem::Elements e;
-  for (const auto [x, y] : std::vector<std::pair<double, double>>{{0.0, 0.0}, {1.0, 0.0}, {3.0, 0.0}, {3.9990234375, 0.0},
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0.0, 0.0}, {1.0, 0.0}, {3.0, 0.0}, {3.9990234375, 0.0},
                                                                   {6.0, 2.0}, {6.0, 3.0}}) {
     e.x.push_back(x);
     e.y.push_back(y);
