@@ -14,6 +14,10 @@
 #     --unit-timeout S, --verification-timeout S   per ctest test (default 120 s, 900 s)
 #     --check          only check that every mutant applies exactly once, then exit
 #     --mutants FILE   the list to run (default mutants.txt; generate.py writes others)
+#     --skip-unlinked  for a mutant in reports/ or verification/, leave out the unit tests whose executables
+#                      do not link that code (unit_lib "lib: ", unit_reference "reference: ", the dem2d_alternate
+#                      and dem2d_divisible benches: they link dem2d_core or dem2d_reference only, so they
+#                      cannot see the mutant); the score is the same, the run about twice as fast there
 #     --ccache         build through ccache (with CCACHE_BASEDIR above --work, the first build of the
 #                      copy reuses the objects of a checkout's build/: the copy builds in <work>/src/build)
 #   IDs: run only these mutants.
@@ -21,7 +25,7 @@ set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
 repo=$(cd "$here/../.." && pwd)
-mutants="$here/mutants.txt" ccache=0
+mutants="$here/mutants.txt" ccache=0 skip_unlinked=0
 tool="$here/mutants.py"
 work=/tmp/dem2d_mutation
 rev="" tests_rev="" from=1 count=100000 unit_only=0 unit_timeout=120 ver_timeout=900 check=0
@@ -39,7 +43,8 @@ while (($#)); do
     --check) check=1 ;;
     --mutants) mutants=$(realpath "$2"); shift ;;
     --ccache) ccache=1 ;;
-    -h|--help) sed -n 2,23p "$0"; exit 0 ;;
+    --skip-unlinked) skip_unlinked=1 ;;
+    -h|--help) sed -n 2,27p "$0"; exit 0 ;;
     -*) echo "unknown option $1" >&2; exit 2 ;;
     *) ids+=("$1") ;;
   esac
@@ -68,8 +73,9 @@ python3 "$tool" check "$mutants" "$src" >/dev/null || { python3 "$tool" check "$
 # every target: the unit label also runs the fuzz replays and the dem2d_alternate checks (a list of targets
 # here fell behind the tests once: their executables were missing and the baseline failed)
 build_all() { nice -n 15 cmake --build "$build" -j2 >"$work/build.log" 2>&1; }
+exclude=()  # set per mutant by --skip-unlinked (see tests/CMakeLists.txt and bench/CMakeLists.txt: what links what)
 run_ctest() {  # label timeout
-  nice -n 15 ctest --test-dir "$build" -L "$1" --stop-on-failure --timeout "$2" -j2 >"$work/ctest.log" 2>&1
+  nice -n 15 ctest --test-dir "$build" -L "$1" "${exclude[@]}" --stop-on-failure --timeout "$2" -j2 >"$work/ctest.log" 2>&1
 }
 
 if [[ ! -f "$build/CMakeCache.txt" ]]; then
@@ -107,6 +113,10 @@ for id in "${ids[@]}"; do
   cp -p "$src/$file" "$orig/saved"
   current=$file
   python3 "$tool" apply "$mutants" "$src" "$id"
+  exclude=()
+  if ((skip_unlinked)); then
+    case "$file" in reports/*|verification/*) exclude=(-E '^(lib|reference): |^bench: dem2d_(alternate|divisible)') ;; esac
+  fi
   if ! build_all; then
     status="build-error"
   elif ! run_ctest unit "$unit_timeout"; then

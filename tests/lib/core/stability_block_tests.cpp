@@ -92,4 +92,6 @@ TEST_CASE("block bound G5: the guard above both the Weyl sum and the row sums", 
   const double weyl = 2.0 / std::sqrt(6 * kf / m_pre + disk_row);  // (G4)
   CHECK(b.limit > 1.05 * weyl);
   CHECK(b.limit > b.limit_gershgorin);
+  // no Coulomb shear spring (K_s = 0): sticking adds nothing, so the block bound is the sticking limit too
+  CHECK(b.limit_sticking == b.limit);
 }

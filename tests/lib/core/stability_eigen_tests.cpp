@@ -52,6 +52,25 @@ TEST_CASE("eigen guard: two bonded PREs are limited by their relative rotation m
   CHECK(b.limit_gershgorin < b.limit);   // the row sums are the more conservative bound
 }
 
+TEST_CASE("eigen guard: a PRE bonded to a fixed PRE keeps its springs to the ground 3 K_n/m", "[stability]") {
+  // The same pair with one PRE fixed (ground): its springs now act on the free PRE alone. Rotation:
+  // 2 K_n r² / I = 3 K_n/m (the largest), normal translation 2 K_n/m. Either element may be the fixed one.
+  const std::size_t fixed = GENERATE(0u, 1u);
+  CAPTURE(fixed);
+  dem::Model m = bonded_pair(dem::Integrator::k18, 0.0);
+  m.elements.motion[fixed] = dem::Motion::fixed;
+  const dem::StartNetwork net = dem::start_network(m);
+  REQUIRE(net.any_bond);
+  CHECK(net.dofs == 3);
+  CHECK(net.springs.size() == 4);
+  const double lambda = 3.0 * kn / mass;
+  CHECK_THAT(dem::network_eigenvalue(net, false, false), WithinRel(lambda, 1e-9));
+  const dem::StabilityBound b = dem::Simulation(m).stability_bound();
+  CHECK(b.eigen);
+  CHECK(b.limit <= 2.0 / std::sqrt(lambda) * (1 + 1e-9));  // K18 without damping: 2/ω
+  CHECK(b.limit >= 2.0 / std::sqrt(lambda) * (1 - 1e-5));
+}
+
 TEST_CASE("eigen guard: a model without bonds keeps the row-sum guard", "[stability]") {
   auto m = test::make_model({{"disk", 2650.0}}, 1e-6);
   test::set_law(m, 0, 0, test::linear_law(kn, 0.0, 0.5, 10.0, 0.0));
