@@ -268,7 +268,7 @@ double network_eigenvalue(const StartNetwork& net, bool damping, bool sticking) 
 }
 
 double eigen_limit(const StartNetwork& net, Integrator integrator, bool sticking, double lambda_new, double c_new,
-                   double hopf_new) {
+                   double hopf_new, int* solves) {
   const double kappa = integrator == Integrator::k18 ? 4.0 : 12.0;  // (G3)
   const double lam = network_eigenvalue(net, false, sticking), c = network_eigenvalue(net, true, sticking);
   // bracket: both maxima taken apart (a safe, smaller Δt) and the stiffness alone (a larger one)
@@ -276,11 +276,15 @@ double eigen_limit(const StartNetwork& net, Integrator integrator, bool sticking
   double hi = lam + lambda_new > 0.0 ? std::sqrt(kappa / (lam + lambda_new)) : kappa / (2.0 * (c + c_new));
   if (!std::isfinite(lo)) return inf;
   std::vector<double> warm;  // the top vector of the last operator: the next Lanczos starts there
-  auto excess = [&](double dt) { return rate_from(net, dt, sticking, warm) + dt * dt * lambda_new + 2.0 * dt * c_new - kappa; };
+  auto excess = [&](double dt) {
+    if (solves) ++*solves;
+    return rate_from(net, dt, sticking, warm) + dt * dt * lambda_new + 2.0 * dt * c_new - kappa;
+  };
   // Illinois regula falsi on the bracket (excess(lo) ≤ 0 ≤ excess(hi)); the stable end lo is returned
   double g_lo = excess(lo), g_hi = excess(hi);
   if (g_hi < 0.0) return integrator == Integrator::k19 ? std::min(hi, std::min(sticking ? net.hopf_stick : net.hopf, hopf_new)) : hi;
-  if (g_lo > 0.0) lo = 0.0, g_lo = -kappa;  // (Lanczos roundoff above the safe bracket end)
+  if (g_lo == 0.0) hi = lo;  // lo is the root (proportional damping at the top mode): nothing to bracket
+  else if (g_lo > 0.0) lo = 0.0, g_lo = -kappa;  // (Lanczos roundoff above the safe bracket end)
   int side = 0;
   for (int it = 0; it < 60 && hi - lo > 1e-4 * hi; ++it) {
     double x = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);

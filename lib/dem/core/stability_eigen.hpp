@@ -40,8 +40,9 @@ double network_eigenvalue(const StartNetwork& net, bool damping, bool sticking);
 
 /// The largest Δt with λ_max(Δt²A + 2ΔtC) + Δt²λ_new + 2Δt c_new < κ (κ = 4 for K18, 12 for K19)
 /// and, for K19, Δt < the smallest η/K (G3, G4), by bisection to a relative 1e-4 (the stable end); `lambda_new`,
-/// `c_new`, `hopf_new`: the rates of the contacts that can still form.
+/// `c_new`, `hopf_new`: the rates of the contacts that can still form. `solves` (optional): adds the number
+/// of Lanczos solves made (two for the bracket, one per regula falsi step).
 double eigen_limit(const StartNetwork& net, Integrator integrator, bool sticking, double lambda_new, double c_new,
-                   double hopf_new);
+                   double hopf_new, int* solves = nullptr);
 
 }  // namespace dem

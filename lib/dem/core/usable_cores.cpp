@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 namespace dem {
 
@@ -22,22 +23,27 @@ std::string read_first_line(const std::string& path) {
 // The cgroup v2 quota of this process's group (and of the root of the namespace, what a container sees),
 // or the v1 cfs quota; the smallest found.
 std::optional<int> cgroup_quota_cores() {
-  std::optional<int> best;
-  auto take = [&best](std::optional<int> q) {
-    if (q && (!best || *q < *best)) best = q;
-  };
-  take(cores_of_quota(read_first_line("/sys/fs/cgroup/cpu.max")));
+  std::vector<std::string> quotas{read_first_line("/sys/fs/cgroup/cpu.max")};
   std::ifstream groups("/proc/self/cgroup");
   for (std::string line; std::getline(groups, line);) {
-    if (line.rfind("0::", 0) == 0 && line.size() > 3) take(cores_of_quota(read_first_line("/sys/fs/cgroup" + line.substr(3) + "/cpu.max")));
+    if (line.rfind("0::", 0) == 0 && line.size() > 3) quotas.push_back(read_first_line("/sys/fs/cgroup" + line.substr(3) + "/cpu.max"));
   }
   const std::string v1_quota = read_first_line("/sys/fs/cgroup/cpu/cpu.cfs_quota_us");
   const std::string v1_period = read_first_line("/sys/fs/cgroup/cpu/cpu.cfs_period_us");
-  if (!v1_quota.empty() && !v1_period.empty()) take(cores_of_quota(v1_quota + " " + v1_period));
-  return best;
+  if (!v1_quota.empty() && !v1_period.empty()) quotas.push_back(v1_quota + " " + v1_period);
+  return smallest_quota_cores(quotas);
 }
 
 }  // namespace
+
+std::optional<int> smallest_quota_cores(const std::vector<std::string>& cpu_max) {
+  std::optional<int> best;
+  for (const std::string& text : cpu_max) {
+    const std::optional<int> q = cores_of_quota(text);
+    if (q && (!best || *q < *best)) best = q;
+  }
+  return best;
+}
 
 std::optional<int> cores_of_quota(const std::string& cpu_max) {
   std::istringstream in(cpu_max);

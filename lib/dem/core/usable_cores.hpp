@@ -5,6 +5,7 @@
 // (cgroup cpu.max) may use fewer, and threads beyond those only wait for each other.
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace dem {
 
@@ -14,5 +15,9 @@ int usable_cores();
 /// A cgroup quota as cpu.max (v2: "QUOTA PERIOD" or "max PERIOD") gives it: QUOTA / PERIOD cores, rounded
 /// up; nullopt for "max" (no quota) or text that is not a quota.
 std::optional<int> cores_of_quota(const std::string& cpu_max);
+
+/// The smallest quota of several cpu.max texts (the group's, its parents', a v1 quota and period): the
+/// one that binds. nullopt when none is a quota.
+std::optional<int> smallest_quota_cores(const std::vector<std::string>& cpu_max);
 
 }  // namespace dem

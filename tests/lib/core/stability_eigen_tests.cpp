@@ -17,10 +17,10 @@ constexpr double kn = 1e5, mass = 0.5, r = 0.01;
 /// Modes by hand: the relative normal translation λ = 2·2K_n/m, the relative rotation θ₁ = −θ₂ with
 /// energy ½ Σ K_n (aξ·2θ)², kinetic ½·2Iθ̇², I = (2/3) r² m: λ = 2·2K_n r²/I = 6K_n/m (the largest).
 /// With K_s = 0 only normal springs carry dashpots, so C = (η_n/K_n) A: proportional, exact per mode.
-dem::Model bonded_pair(dem::Integrator integ, double h_n) {
+dem::Model bonded_pair(dem::Integrator integ, double h_n, double ks = 0.0) {
   auto m = test::make_model({{"block", 2000.0}}, 1e-7);
   m.numerics.integrator = integ;
-  dem::PairLaw law = test::bonded_face_law(2, kn, 0.0, h_n);
+  dem::PairLaw law = test::bonded_face_law(2, kn, ks, h_n);
   law.face.positions = dem::SegmentPositions::ends;
   test::set_law(m, 0, 0, law);
   dem::add_element(m, dem::Shape::pre, 0, r, {0.0, 0.0}, {}, 0.0, dem::PreMass::square, mass);
@@ -69,6 +69,26 @@ TEST_CASE("eigen guard: a PRE bonded to a fixed PRE keeps its springs to the gro
   CHECK(b.eigen);
   CHECK(b.limit <= 2.0 / std::sqrt(lambda) * (1 + 1e-9));  // K18 without damping: 2/ω
   CHECK(b.limit >= 2.0 / std::sqrt(lambda) * (1 - 1e-5));
+}
+
+TEST_CASE("eigen guard: the regula falsi ends on the stable side within 1e-4 in a few Lanczos solves", "[stability]") {
+  // Shear springs K_s = 0.3 K_n with their own dashpots: C is not proportional to A, so the root of
+  // λ_max(Δt²A + 2ΔtC) = κ lies strictly inside the bracket and the regula falsi has work to do.
+  const double h_n = GENERATE(0.3, 1.0);
+  const double new_rate = GENERATE(0.0, 1e7);  // with and without contacts that can still form (G4)
+  CAPTURE(h_n, new_rate);
+  const dem::Model m = bonded_pair(dem::Integrator::k18, h_n, 0.3 * kn);
+  const dem::StartNetwork net = dem::start_network(m);
+  int solves = 0;
+  const double dt = dem::eigen_limit(net, dem::Integrator::k18, false, new_rate, 0.0, 1e300, &solves);
+  auto excess = [&](double t) { return dem::network_rate(net, t, false) + t * t * new_rate - 4.0; };  // κ = 4 (G3)
+  CHECK(excess(dt) <= 0.0);                           // the stable end
+  CHECK(excess(dt / (1.0 - 1e-4) * (1 + 1e-9)) > 0.0);  // the root within 1e-4 above it
+  // the bracket's two ends and a few Illinois steps (5 or 6 here, where halving the bracket would take
+  // about 13); where the lower end is already the root (h_n = 1 with the new contacts: the normal mode,
+  // whose damping is proportional, is the top one), none
+  CHECK(solves >= 2);
+  CHECK(solves <= 8);
 }
 
 TEST_CASE("eigen guard: a model without bonds keeps the row-sum guard", "[stability]") {

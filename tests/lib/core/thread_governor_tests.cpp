@@ -110,6 +110,15 @@ TEST_CASE("A cgroup CPU quota gives its cores rounded up, and no quota gives non
   CHECK(dem::usable_cores() >= 1);
 }
 
+TEST_CASE("Of several cgroup quotas the smallest binds in any order", "[threads]") {
+  CHECK(dem::smallest_quota_cores({"max 100000", "300000 100000", "150000 100000"}) == 2);
+  CHECK(dem::smallest_quota_cores({"150000 100000", "300000 100000", "max 100000"}) == 2);
+  CHECK(dem::smallest_quota_cores({"800000 100000", "100000 100000", "400000 100000"}) == 1);
+  CHECK(dem::smallest_quota_cores({"", "max 100000", "400000 100000"}) == 4);
+  CHECK_FALSE(dem::smallest_quota_cores({"max 100000", "", "-1 100000"}));
+  CHECK_FALSE(dem::smallest_quota_cores({}));
+}
+
 TEST_CASE("Changing the thread count between steps, as the governor does, changes no result bit", "[threads][governor]") {
   struct Switched {
     const char* path;
