@@ -83,6 +83,9 @@ if [[ ! -f "$build/CMakeCache.txt" ]]; then
   ((ccache)) && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
   nice -n 15 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >"$work/configure.log" 2>&1
 fi
+# ctest's --timeout does not override a test's own TIMEOUT property: the unit tests take theirs from this
+# cache variable (a mutant that leaves a thread at a barrier fails in --unit-timeout, not in 600 s)
+nice -n 15 cmake -S "$src" -B "$build" -DDEM2D_UNIT_TIMEOUT="$unit_timeout" >>"$work/configure.log" 2>&1
 # The unmutated suite must pass, or every mutant would count as killed.
 if [[ ! -f "$work/baseline.unit.ok" ]]; then
   echo "baseline: building and running the unmutated unit tests ..."

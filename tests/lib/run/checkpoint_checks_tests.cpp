@@ -142,11 +142,15 @@ TEST_CASE("A crafted checkpoint of disks is refused with the file and the field 
       {"pair_touching", ck.with<std::uint8_t>(at + s.linear_pair0 + 12, 2), "linear pair slot 0 touching"},
       {"pair_force", ck.with<double>(at + s.linear_pair0 + 13 + 4 * 8, kNaN), "linear pair slot 0"},
       {"wall_slot_j", ck.with<std::uint32_t>(at + s.linear_wall0 + 4, 9), "wall index 9"},
+      {"wall_slot_j_just_out", ck.with<std::uint32_t>(at + s.linear_wall0 + 4, 2), "wall index 2 of 2 walls"},  // one past the last
+      {"wall_slot_eta_s", ck.with<double>(at + s.linear_wall0 + 13 + 8, kNaN), "linear wall slot 0"},
       {"wall_slot_opened", ck.with<std::uint8_t>(at + s.linear_wall0 + 13 + 6 * 8, 2), "linear wall slot opened"},
       {"x_nan", ck.with<double>(at + s.x + 8, kNaN), "element x[1]"},
       {"active_7", ck.with<std::uint8_t>(at + s.active + 2, 7), "element active[2]"},
       {"wall_nan", ck.with<double>(at + s.wall0 + 16, kNaN), "wall 0 (floor)"},
       {"x_ref_nan", ck.with<double>(at + s.x_ref, kNaN), "reference x[0]"},
+      // the last wall's reference y: after x_ref's n values, y_ref's count and n values, wall_ref's count
+      {"wall_ref_y", ck.with<double>(at + s.x_ref + 16 * s.n + 16 + 16 * (s.walls - 1) + 8, kNaN), "wall reference 1"},
       {"preloading_2", ck.with<std::uint8_t>(at + s.clock + 4 * 8, 2), "preloading"},
       {"plate_travel", ck.with<double>(at + s.clock + 4 * 8 + 1 + 16, -1.0), "plate travel"},  // the state's last 8 bytes
       {"state_clock", ck.with<double>(at + s.clock + 8, kNaN), "clock"},
@@ -187,6 +191,7 @@ TEST_CASE("A crafted checkpoint of bonded PREs is refused with the file and the 
       {ck.with<std::int32_t>(slot + links, 99), "99 links"},
       {ck.with<std::uint8_t>(slot + links + 4, 2), "face slot any_tensile"},
       {ck.with<double>(slot + 13, kNaN), "face pair slot 0"},
+      {ck.with<double>(slot + seg0 + 8, kNaN), "face pair slot 0 segment"},  // segment 0's p_e
   };
   int k = 0;
   for (const auto& [bytes, field] : crafted) {
