@@ -177,7 +177,11 @@ TEST_CASE("picture: a contact line lies between the centres, its width proportio
   CHECK(black.g == 0);
   // Off the line (a third of a radius above): the element fill, not the line.
   const double r_px = 0.01 * pic.frame.scale;
-  CHECK(pic.canvas.at(x_ab, static_cast<int>(a.y - r_px / 3)).r > 200);
+  const dem::Rgb fill = pic.canvas.at(x_ab, static_cast<int>(a.y - r_px / 3));
+  CHECK(fill.r > 200);
+  CHECK(fill.r < 255);  // grey: neither the background nor a colour
+  CHECK(fill.g == fill.r);
+  CHECK(fill.b == fill.r);
   // Widths: 12 px for the largest force, 6 px for half of it (antialiased edges: ±1 px).
   const int w_ab = dark_in_column(pic.canvas, x_ab, y - 40, y + 40), w_bc = dark_in_column(pic.canvas, x_bc, y - 40, y + 40);
   CHECK(w_ab == Approx(12).margin(1));
@@ -219,6 +223,49 @@ TEST_CASE("picture: the legend's sample line stands clear of its label - which f
   CHECK(before == 0);  // nothing left of the line
   CHECK(in_gap == 0);  // a clear gap between the line and its label
   CHECK(label > 0);    // the label follows the gap
+  // The label's ink (7 s rows of the font) is centred on the sample line, to a font pixel: rows from
+  // the end of the first text row's ink (3 s above the band) to the band's end
+  int first = -1, last = -1;
+  for (int row = top - 3 * s; row < top + sample_h; ++row)
+    for (int col = line_end + 5 * s; col < line_end + 40 * s; ++col)
+      if (dark(col, row)) {
+        if (first < 0) first = row;
+        last = row;
+      }
+  REQUIRE(first >= 0);
+  CAPTURE(first, last, mid);
+  CHECK(std::abs(0.5 * (first + last) - mid) <= s);
+  // The strip ends a few font pixels below its last text row ("compression, tension"): no empty band.
+  int last_ink = -1;
+  for (int row = pic.frame.scene_height; row < pic.canvas.height(); ++row)
+    for (int col = 0; col < pic.canvas.width(); ++col) {
+      const dem::Rgb p = pic.canvas.at(col, row);
+      if (p.r != 245 || p.g != 245 || p.b != 245) last_ink = row;
+    }
+  REQUIRE(last_ink > mid);
+  CHECK(pic.canvas.height() - 1 - last_ink <= 6 * s);
+}
+
+TEST_CASE("picture: a wall contact's line runs from the centre down to the wall and no further", "[picture]") {
+  const dem::Case c = dem::read_case(test::source("cases/basic/rest_on_wall.toml"));  // a disk on a floor
+  dem::Simulation sim(c.model);
+  for (int k = 0; k < 100; ++k) sim.step();
+  REQUIRE(sim.contact(0, 0, true).fn > 0.0);
+  dem::PictureOptions o;
+  o.width = 800;
+  o.max_line = 8.0;
+  const dem::ForcePicture pic = dem::draw_force_network(sim, o);
+  const dem::Elements& e = sim.model().elements;
+  const dem::Vec2 centre = pic.frame.to_px({e.x[0], e.y[0]});
+  const double r_px = e.radius[0] * pic.frame.scale;
+  REQUIRE(r_px > 40.0);
+  const int col = static_cast<int>(centre.x), y = static_cast<int>(centre.y);
+  // above the centre (beyond the line's round cap): the disk's fill only
+  CHECK(dark_in_column(pic.canvas, col, y - static_cast<int>(0.9 * r_px), y - 6) == 0);
+  // below it, down to the contact point r below the centre, where the floor (drawn dark too) begins:
+  // the line, every pixel
+  const int y1 = y + static_cast<int>(r_px) - 1;
+  CHECK(dark_in_column(pic.canvas, col, y + 6, y1) == y1 - (y + 6));
 }
 
 TEST_CASE("picture: removed elements and their contacts are not drawn", "[picture]") {

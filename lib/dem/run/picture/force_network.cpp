@@ -62,7 +62,6 @@ PictureFrame picture_frame(const Simulation& sim, const PictureOptions& o) {
   f.x0 = all.x0 - margin - 0.5 * (w - (all.x1 - all.x0));
   f.y1 = all.y1 + margin + 0.5 * (h - (all.y1 - all.y0));
   f.scene_height = std::clamp(static_cast<int>(std::ceil((h + 2 * margin) * f.scale)), 1, 4 * o.width);
-  f.legend_height = 3 * 10 * legend_scale(o.width) + 4 * legend_scale(o.width);
   return f;
 }
 

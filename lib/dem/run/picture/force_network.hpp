@@ -26,7 +26,8 @@ struct PictureOptions {
 struct PictureFrame {
   double x0 = 0.0, y1 = 0.0;  // world left edge and top edge [m]
   double scale = 1.0;         // px per m
-  int width = 0, scene_height = 0, legend_height = 0;
+  int width = 0, scene_height = 0;
+  int legend_height = 0;  // set by draw_force_network (the legend's sample band is as tall as the widest line)
   Vec2 to_px(Vec2 p) const { return {(p.x - x0) * scale, (y1 - p.y) * scale}; }
 };
 
