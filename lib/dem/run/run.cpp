@@ -378,9 +378,7 @@ nlohmann::json discharge_summary(const Simulation& sim, const LoopState& loop, s
     ks.push_back({{"time", k.t}, {"element", static_cast<std::int64_t>(k.element)}, {"x", k.x}, {"y", k.y}});
     keystone_mass += m.elements.mass[sim.index_of(static_cast<std::uint32_t>(k.element))];  // k.element: an id
   }
-  double remaining_mass = 0.0;
-  for (std::size_t i = 0; i < m.elements.size(); ++i)
-    if (m.elements.active[i]) remaining_mass += m.elements.mass[i];
+  const double remaining_mass = total_mass(m);
   return {{"discharged", d.count}, {"discharged_mass", d.mass}, {"remaining", n_active},
           {"remaining_mass", remaining_mass}, {"keystones_removed", loop.keystones.size()},
           {"keystone_mass", keystone_mass}, {"keystones", ks},
