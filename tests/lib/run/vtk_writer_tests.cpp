@@ -71,3 +71,60 @@ TEST_CASE("vtk: a PRE is drawn as its turned square", "[vtk]") {
   CHECK(std::count(kind.begin(), kind.end(), 4) == 3);
   CHECK(kind.back() == 4);
 }
+
+namespace {
+/// A disk (r = 1 cm) touching a wall inclined at 45° below it on the right (overlap 0.1 mm), no gravity;
+/// the wall contact's normal n = (1, −1)/√2.
+dem::Model disk_on_inclined_wall() {
+  dem::Model m = test::make_model({{"d", 2650.0}, {"w", 0.0}}, 1e-6);
+  test::set_law(m, 0, 1, test::linear_law(1e5, 0.0, 0.5, 0.0, 0.0));
+  dem::add_element(m, dem::Shape::disk, 0, 0.01, {0.0, 0.0}, {}, 0.0, dem::PreMass::square, 0.1);
+  const double s = std::sqrt(0.5), d = 0.0099;
+  const dem::Vec2 foot{d * s, -d * s}, t{s, s};
+  m.walls.push_back(test::segment_wall(foot - t * 0.05, foot + t * 0.05, 1, "slope"));
+  return m;
+}
+
+/// Three disks in a row, each touching the next (overlap 0.1 mm), no gravity, no walls.
+dem::Model three_in_a_row() {
+  dem::Model m = test::make_model({{"d", 2650.0}}, 1e-6);
+  test::set_law(m, 0, 0, test::linear_law(1e5, 0.0, 0.5, 0.0, 0.0));
+  for (int k = 0; k < 3; ++k)
+    dem::add_element(m, dem::Shape::disk, 0, 0.01, {0.0199 * k, 0.0}, {}, 0.0, dem::PreMass::square, 0.1);
+  return m;
+}
+}  // namespace
+
+TEST_CASE("vtk: a wall contact's point is r n from the centre on an inclined wall too", "[vtk]") {
+  dem::Simulation sim(disk_on_inclined_wall());
+  sim.step();
+  const auto contact = sim.contact(0, 0, true);
+  REQUIRE(contact.fn > 0.0);
+  REQUIRE(contact.nx == Approx(std::sqrt(0.5)).epsilon(1e-6));
+  REQUIRE(contact.ny == Approx(-std::sqrt(0.5)).epsilon(1e-6));
+  const auto out = test::fresh_dir("dem2d_unit_vtk", "inclined");
+  fs::create_directories(out);
+  write_vtp(out / "s.vtp", sim);
+  const auto points = test::vtp_array<double>(test::slurp(out / "s.vtp"), "Points");
+  REQUIRE(points.size() == 12);  // the centre, the wall's two ends, the contact point
+  const dem::Elements& e = sim.model().elements;
+  CHECK(points[9] == Approx(e.x[0] + 0.01 * contact.nx).margin(1e-12));
+  CHECK(points[10] == Approx(e.y[0] + 0.01 * contact.ny).margin(1e-12));
+}
+
+TEST_CASE("vtk: the contacts of an element removed after a step are not written", "[vtk]") {
+  // The slots of a step keep the contacts of an element removed after it (a discharged disk, a keystone)
+  // until the next step; the snapshot of that step shows neither the element nor its contacts.
+  const std::uint32_t removed = GENERATE(0u, 2u);  // the first of its pair or the second
+  CAPTURE(removed);
+  dem::Simulation sim(three_in_a_row());
+  sim.step();
+  REQUIRE(sim.contacts().size() == 2);
+  sim.model().elements.active[sim.index_of(removed)] = 0;
+  const auto out = test::fresh_dir("dem2d_unit_vtk", "removed");
+  fs::create_directories(out);
+  write_vtp(out / "s.vtp", sim);
+  const std::string v = test::slurp(out / "s.vtp");
+  CHECK(v.find("NumberOfPoints=\"2\" NumberOfVerts=\"2\" NumberOfLines=\"1\"") != std::string::npos);
+  CHECK(test::vtp_array<std::int64_t>(v, "connectivity") == std::vector<std::int64_t>{0, 1});  // verts: the two centres
+}
