@@ -1,5 +1,7 @@
 // The report's citations link to the project's own docs/ rendered into the page (reports/cited_docs.hpp).
 #include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "cited_docs.hpp"
@@ -81,4 +83,22 @@ TEST_CASE("Markdown renders with cmark-gfm (tables and emphasis and lists) and r
   CHECK(html.find("<li>one</li>") != std::string::npos);
   CHECK(html.find("|---|") == std::string::npos);
   CHECK(html.find("<script>") == std::string::npos);
+}
+
+TEST_CASE("A range of labels anchors each label from its first to its last and no further", "[report][docs]") {
+  // a model.md of its own: a section, then one paragraph that states the range (K16–K19) and (M3-M5)
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "dem2d_cited_docs_range";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "model.md") << "# Model\n\n## 1 Contacts\n\nThe averaged increments (K16–K19) and (M3-M5), and (M7).\n";
+  const report::CitedDocs d = report::render_cited_docs(dir);
+  for (const char* label : {"K16", "K17", "K18", "K19", "M3", "M4", "M5", "M7"}) {
+    CAPTURE(label);
+    CHECK(report::citation_anchor(d, label) == std::string("doc-model-") + label);
+  }
+  for (const char* label : {"K15", "K20", "M2", "M6"}) {
+    CAPTURE(label);
+    CHECK(report::citation_anchor(d, label) == "");
+  }
+  std::filesystem::remove_all(dir);
 }
