@@ -131,6 +131,12 @@ TEST_CASE("report of two studies: HTML self-contained, Markdown links figures", 
   CHECK(html.find("v0.1-3-gabc") != std::string::npos);
   CHECK(html.find("1 passed") != std::string::npos);
   CHECK(html.find("1 failed") != std::string::npos);
+  CHECK(html.find("without verdict") == std::string::npos);  // every check has one
+  // each convergence series with its one-line summary under the figure
+  const std::string summary = report::series_summary(nlohmann::json::parse(passing_study)["series"][0]);
+  CAPTURE(summary);
+  REQUIRE_FALSE(summary.empty());
+  CHECK(html.find("<p class=\"small\">" + summary + "</p>") != std::string::npos);
   // Self-contained: no external resources, no http at all (SVG namespaces are stripped).
   CHECK(html.find("http") == std::string::npos);
   CHECK_FALSE(std::regex_search(html, std::regex(R"(\b(src|href)\s*=\s*["'](?!#))")));
