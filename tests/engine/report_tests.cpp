@@ -156,6 +156,8 @@ TEST_CASE("report of two studies: HTML self-contained, Markdown links figures", 
     ++links;
   }
   CHECK(links == 2);
+  // figures are numbered from 1 in their study: the first figure (id delta_t) is figure 1
+  CHECK(markdown.find("(figures/impact_restitution-figure-1-delta") != std::string::npos);
   CHECK(markdown.find("FAIL") != std::string::npos);
   CHECK(markdown.find("block\\_on\\_slope") != std::string::npos);
 }
