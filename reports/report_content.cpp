@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include "text_format.hpp"
 
@@ -203,6 +204,19 @@ ReadmeParts readme_parts(const nlohmann::json& result) {
   return parts;
 }
 
+std::optional<HeaderField> cpu_field(const std::string& cpuinfo) {
+  std::istringstream in(cpuinfo);
+  int cores = 0;
+  std::string model;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("processor", 0) == 0) ++cores;
+    if (model.empty() && line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
+      model = line.substr(line.find(':') + 2);
+  }
+  if (model.empty()) return std::nullopt;
+  return HeaderField{"CPU", fmt::format("{} ({} logical cores)", model, cores)};
+}
+
 namespace {
 std::vector<HeaderField> ask_machine() {
   std::vector<HeaderField> fields;
@@ -216,14 +230,9 @@ std::vector<HeaderField> ask_machine() {
       if (!fields.empty()) fields.back().value = name + " (" + fields.back().value + ")";
     }
   std::ifstream cpuinfo("/proc/cpuinfo");
-  int cores = 0;
-  std::string model;
-  for (std::string line; std::getline(cpuinfo, line);) {
-    if (line.rfind("processor", 0) == 0) ++cores;
-    if (model.empty() && line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
-      model = line.substr(line.find(':') + 2);
-  }
-  if (!model.empty()) fields.push_back({"CPU", fmt::format("{} ({} logical cores)", model, cores)});
+  std::stringstream text;
+  text << cpuinfo.rdbuf();
+  if (auto cpu = cpu_field(text.str())) fields.push_back(std::move(*cpu));
 #if defined(__clang__)
   fields.push_back({"Compiler", fmt::format("clang {}", __clang_version__)});
 #elif defined(__GNUC__)

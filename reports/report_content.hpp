@@ -91,6 +91,9 @@ ReadmeParts readme_parts(const nlohmann::json& result);
 
 // The machine the report was written on: OS, CPU model, compiler and library versions.
 std::vector<HeaderField> machine_fields();
+/// The CPU line of the header from /proc/cpuinfo's text: the first "model name" and the count of
+/// "processor" entries; none where no model name is given (some ARM kernels).
+std::optional<HeaderField> cpu_field(const std::string& cpuinfo);
 
 // Setup of a study as label/value pairs: kind, case, parameter, each setup entry, overrides.
 std::vector<HeaderField> setup_fields(const nlohmann::json& result);

@@ -431,3 +431,18 @@ TEST_CASE("a tic label with a percent sign is drawn as written - gnuplot reads t
   CHECK(outcome.error == "");
   CHECK(outcome.ok);
 }
+
+TEST_CASE("the header's machine lines: the first CPU model and the processors counted, no line ends", "[report]") {
+  const auto cpu = report::cpu_field("processor\t: 0\nvendor_id\t: X\nmodel name\t: Alpha 1\n\nprocessor\t: 1\n"
+                                     "model name\t: Beta 2\n");
+  REQUIRE(cpu);
+  CHECK(cpu->label == "CPU");
+  CHECK(cpu->value == "Alpha 1 (2 logical cores)");
+  CHECK_FALSE(report::cpu_field("processor\t: 0\nBogoMIPS\t: 50.00\nprocessor\t: 1\n"));  // no model name (ARM)
+  for (const auto& f : report::machine_fields()) {  // what the system and gnuplot print, their line ends cut
+    CAPTURE(f.label, f.value);
+    CHECK_FALSE(f.value.empty());
+    CHECK(f.value.find('\n') == std::string::npos);
+    CHECK(f.value.find('\r') == std::string::npos);
+  }
+}
