@@ -92,6 +92,10 @@ TEST_CASE("snapshot pictures are embedded as a captioned gallery, a missing one 
   CHECK(markdown.find("(figures/silo-snapshot-1.png)") != std::string::npos);
   CHECK(read(options.out_dir / "figures" / "silo-snapshot-1.png") == kPng);
   CHECK(count(markdown, "missing picture: ") == 3);
+  // one heading per figure, as in the HTML
+  CHECK(count(markdown, "#### ") == 2);
+  CHECK(count(markdown, "#### Fig. 8: discharge") == 1);
+  CHECK(count(markdown, "#### Fig. 6: settled") == 1);
 }
 
 TEST_CASE("base64 pads as RFC 4648 says", "[report][snapshot]") {
