@@ -132,6 +132,10 @@ TEST_CASE("report of two studies: HTML self-contained, Markdown links figures", 
   CHECK(html.find("1 passed") != std::string::npos);
   CHECK(html.find("1 failed") != std::string::npos);
   CHECK(html.find("without verdict") == std::string::npos);  // every check has one
+  // a study's table with its rows, a number cell and text cells
+  CHECK(count(html, ">stick<") == 2);
+  CHECK(count(html, ">slip<") == 2);
+  CHECK(html.find(">10<") != std::string::npos);
   // each convergence series with its one-line summary under the figure
   const std::string summary = report::series_summary(nlohmann::json::parse(passing_study)["series"][0]);
   CAPTURE(summary);
