@@ -104,7 +104,7 @@ std::vector<StabilityTerm> registered_stability_terms(const Model& m) {
 
 namespace {
 
-constexpr double kOverlap = 0.01;
+constexpr double kOverlap = kGuardOverlap;
 constexpr int kGrid = 720;
 constexpr double inf = std::numeric_limits<double>::infinity();
 
@@ -532,7 +532,39 @@ struct BlockClass {
   int zd = 0;                          // the most element contacts one of its elements can have
   double limit = inf, limit_s = inf;   // its row-sum limits (the block of an unbonded element)
   ClassRates walls;                    // a bonded element's wall contacts and extra terms (G4)
+  double xk = 0.0, xc = 0.0;           // the extra terms alone (base friction): every element has them
 };
+
+/// Per class with bonded free elements: the rates one of them can add by the contacts it can still form
+/// (G4, G5): its wall contacts and extra terms, and one contact with each unbonded free partner it can
+/// reach (at most its coordination), each counted as that contact's whole row share w + b.
+std::vector<ClassRates> bonded_growth(const Model& m, const std::vector<Stats>& st, const std::vector<BlockClass>& info) {
+  const std::size_t nm = m.materials.size();
+  int free_unbonded = 0;
+  for (const BlockClass& c : info) free_unbonded += c.unbonded_free;
+  std::vector<ClassRates> grows(nm);
+  for (std::size_t a = 0; a < nm; ++a) {
+    if (!info[a].bonded_free) continue;
+    Kind touch;  // one contact with any unbonded free partner, its whole row share w + b
+    for (std::size_t u = 0; u < nm; ++u)
+      if (const std::int32_t law = m.law_of_pair[a * nm + u]; law >= 0 && info[u].unbonded_free > 0) touch.merge(contact_kind(m, law, st[a], &st[u]));
+    const double n = std::min(info[a].zd, free_unbonded);
+    const ClassRates& w = info[a].walls;
+    grows[a].add(w.lam + n * (touch.k.w + touch.k.b), w.c + n * (touch.c.w + touch.c.b), std::min(w.hopf, touch.hopf),
+                 w.lam_s + n * (touch.k_stick.w + touch.k_stick.b), w.c_s + n * (touch.c_stick.w + touch.c_stick.b),
+                 std::min(w.hopf_s, touch.hopf_stick));
+  }
+  return grows;
+}
+
+/// (G4) The new contacts' matrix has rows on both sides: to the unbonded classes' row sums `u` add the
+/// bonded classes' rows (their wall contacts and their contacts with unbonded partners).
+ClassRates with_bonded_growth(const Model& m, const std::vector<Stats>& st, const std::vector<BlockClass>& info, ClassRates u) {
+  const std::vector<ClassRates> grows = bonded_growth(m, st, info);
+  for (std::size_t a = 0; a < grows.size(); ++a)
+    if (info[a].bonded_free) u.add(grows[a].lam, grows[a].c, grows[a].hopf, grows[a].lam_s, grows[a].c_s, grows[a].hopf_s);
+  return u;
+}
 
 /// (G5) A block bound for a bonded structure with unbonded free elements (a load disk): the bonded
 /// free elements form one block L, each unbonded free element u a block of its own. Feingold–Varga:
@@ -568,28 +600,43 @@ void apply_block_bound(const Model& m, const StartNetwork& net, const std::vecto
     coupling.lam += info[u].unbonded_free * z * b[0], coupling.c += info[u].unbonded_free * z * b[1];
     coupling.lam_s += info[u].unbonded_free * z * b[2], coupling.c_s += info[u].unbonded_free * z * b[3];
   }
-  for (std::size_t a = 0; a < nm; ++a) {
-    if (!info[a].bonded_free) continue;
-    Kind touch;  // one contact with any unbonded free partner, its whole row share w + b
-    for (std::size_t u = 0; u < nm; ++u)
-      if (const std::int32_t law = m.law_of_pair[a * nm + u]; law >= 0 && info[u].unbonded_free > 0) touch.merge(contact_kind(m, law, st[a], &st[u]));
-    const double n = std::min(info[a].zd, free_unbonded);
-    const ClassRates& w = info[a].walls;
-    grown.add(w.lam + n * (touch.k.w + touch.k.b), w.c + n * (touch.c.w + touch.c.b), std::min(w.hopf, touch.hopf),
-              w.lam_s + n * (touch.k_stick.w + touch.k_stick.b), w.c_s + n * (touch.c_stick.w + touch.c_stick.b),
-              std::min(w.hopf_s, touch.hopf_stick));
+  const std::vector<ClassRates> grows = bonded_growth(m, st, info);
+  for (std::size_t a = 0; a < nm; ++a)
+    if (info[a].bonded_free) grown.add(grows[a].lam, grows[a].c, grows[a].hopf, grows[a].lam_s, grows[a].c_s, grows[a].hopf_s);
+  // (G6) the new contacts as a diagonal on the DOFs of the bonded elements with angular room for one; the
+  // others keep only the extra terms (base friction)
+  const Elements& e = m.elements;
+  double new_radius = inf;
+  for (std::size_t i = 0; i < e.size(); ++i)
+    if (e.active[i] && e.motion[i] == Motion::free && !net.bonded[i]) new_radius = std::min(new_radius, e.radius[i]);
+  bool new_wall = false;
+  for (const Wall& w : m.walls) new_wall = new_wall || !w.open;
+  const std::vector<std::uint8_t> room = angular_room(m, new_radius, new_wall);
+  StartNetwork bonded = start_network(m, &net.bonded);
+  for (auto* d : {&bonded.diag_k, &bonded.diag_c, &bonded.diag_k_stick, &bonded.diag_c_stick}) d->assign(static_cast<std::size_t>(bonded.dofs), 0.0);
+  int with_room = 0;
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    if (bonded.dof[i] < 0) continue;
+    const auto a = static_cast<std::size_t>(e.material[i]);
+    const ClassRates& g = grows[a];
+    const double v[4] = {room[i] ? g.lam : info[a].xk, room[i] ? g.c : info[a].xc, room[i] ? g.lam_s : info[a].xk, room[i] ? g.c_s : info[a].xc};
+    with_room += room[i] ? 1 : 0;
+    for (int k = 0; k < 3; ++k) {
+      const auto d = static_cast<std::size_t>(bonded.dof[i] + k);
+      bonded.diag_k[d] = v[0], bonded.diag_c[d] = v[1], bonded.diag_k_stick[d] = v[2], bonded.diag_c_stick[d] = v[3];
+    }
   }
-  const StartNetwork bonded = start_network(m, &net.bonded);
   const Integrator it = m.numerics.integrator;
-  const double block = std::min(limit_u, eigen_limit(bonded, it, false, grown.lam + coupling.lam, grown.c + coupling.c, grown.hopf));
-  const double block_s = std::min(limit_u_s, eigen_limit(bonded, it, true, grown.lam_s + coupling.lam_s, grown.c_s + coupling.c_s, grown.hopf_s));
+  const double block = std::min(limit_u, eigen_limit(bonded, it, false, coupling.lam, coupling.c, grown.hopf));
+  const double block_s = std::min(limit_u_s, eigen_limit(bonded, it, true, coupling.lam_s, coupling.c_s, grown.hopf_s));
   out.limit_block = block;
   out.limit = std::max(out.limit, block);
   out.limit_sticking = std::min(out.limit, std::max(out.limit_sticking, block_s));
   out.assumptions += fmt::format(
       "; block bound (G5): the bonded elements as one block ({} DOF, the other bodies grounded, Lanczos) and each of "
-      "the {} unbonded free elements a block of its own (its row sums): {:.6g} s",
-      bonded.dofs, free_unbonded, block);
+      "the {} unbonded free elements a block of its own (its row sums): {:.6g} s; the contacts the bonded "
+      "elements can still form on the {} of them with angular room for one (G6), a diagonal term",
+      bonded.dofs, free_unbonded, block, with_room);
 }
 
 /// The rates the extra terms (base friction, …) add to the free elements of one class.
@@ -737,9 +784,9 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
         return arrangement_max(w, wall_counts, sets, gaps).value;
       };
       info[a].bonded_free = true;
+      info[a].xk = xk, info[a].xc = xc;
       info[a].walls.add(walls_only(&Kind::k) + xk, walls_only(&Kind::c) + xc, hopf, walls_only(&Kind::k_stick) + xk,
                         walls_only(&Kind::c_stick) + xc, hopf_s);
-      unbonded.add(info[a].walls.lam, info[a].walls.c, hopf, info[a].walls.lam_s, info[a].walls.c_s, hopf_s);
     }
     out.limit_sticking = std::min(out.limit_sticking, limit_s);
     if (first || limit < out.limit) {
@@ -762,7 +809,7 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
   }
   out.limit_gershgorin = out.limit;
   out.limit_gershgorin_sticking = out.limit_sticking;
-  if (net.any_bond) apply_eigen_bound(m, net, unbonded, out);
+  if (net.any_bond) apply_eigen_bound(m, net, with_bonded_growth(m, st, info, unbonded), out);
   if (net.any_bond) apply_block_bound(m, net, st, info, out);
   return out;
 }

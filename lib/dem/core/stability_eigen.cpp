@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numbers>
 #include <limits>
 
 #include "dem/core/simulation.hpp"
@@ -85,7 +86,8 @@ StartNetwork start_network(const Model& m, const std::vector<std::uint8_t>* only
   StartNetwork net;
   net.hopf = net.hopf_stick = inf;
   net.bonded.assign(n, 0);
-  std::vector<int> dof(n, -1);
+  net.dof.assign(n, -1);
+  std::vector<int>& dof = net.dof;
   for (std::size_t i = 0; i < n; ++i)  // checked access: once per guard, O(n)
     if (e.active.at(i) && e.motion.at(i) == Motion::free && (only == nullptr || only->at(i))) dof.at(i) = 3 * (net.dofs++);
   net.dofs *= 3;
@@ -125,6 +127,67 @@ StartNetwork start_network(const Model& m, const std::vector<std::uint8_t>* only
   }
   net.hopf_stick = std::min(net.hopf_stick, net.hopf);
   return net;
+}
+
+namespace {
+
+/// (G6) The least angle at element i of radius r between the directions of two partners touching it,
+/// each an element of radius ρ or a segment wall (ρ = +inf), with overlaps up to ε·ρ between them.
+double least_separation(double r, double rho_a, double rho_b) {
+  constexpr double eps = kGuardOverlap;
+  const bool wall_a = !std::isfinite(rho_a), wall_b = !std::isfinite(rho_b);
+  if (wall_a && wall_b) return 0.0;  // two walls may meet at a corner
+  if (wall_a || wall_b) {
+    const double rho = wall_a ? rho_b : rho_a;
+    return std::acos(std::clamp((r - (1.0 - eps) * rho) / (r + rho), -1.0, 1.0));
+  }
+  const double d1 = r + rho_a, d2 = r + rho_b, d12 = (1.0 - eps) * (rho_a + rho_b);
+  return std::acos(std::clamp((d1 * d1 + d2 * d2 - d12 * d12) / (2.0 * d1 * d2), -1.0, 1.0));
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> angular_room(const Model& m, double new_radius, bool new_wall) {
+  const Elements& e = m.elements;
+  const std::size_t n = e.size();
+  std::vector<std::uint8_t> room(n, 0);
+  std::vector<double> kinds;  // the new partners' radii, +inf for a wall
+  if (new_wall) kinds.push_back(std::numeric_limits<double>::infinity());
+  if (std::isfinite(new_radius)) kinds.push_back(new_radius);
+  if (kinds.empty()) return room;
+  std::vector<std::pair<double, double>> around;  // (direction, partner radius or +inf for a wall)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!e.active[i]) continue;
+    around.clear();
+    const Vec2 c{e.x[i], e.y[i]};
+    for (std::size_t j = 0; j < n; ++j) {
+      if (j == i || !e.active[j] || m.law_index(e.material[i], e.material[j]) < 0) continue;
+      const double dx = e.x[j] - c.x, dy = e.y[j] - c.y, dist = std::hypot(dx, dy);
+      if (dist > (e.radius[i] + e.radius[j]) * (1.0 + kTouch) || dist == 0.0) continue;
+      around.emplace_back(std::atan2(dy, dx), e.radius[j]);
+    }
+    for (const Wall& w : m.walls) {
+      if (w.open || m.law_index(e.material[i], w.material) < 0) continue;
+      const Vec2 q = closest_point(w, c) - c;
+      const double dist = norm(q);
+      if (dist > e.radius[i] * (1.0 + kTouch) || dist == 0.0) continue;
+      around.emplace_back(std::atan2(q.y, q.x), std::numeric_limits<double>::infinity());
+    }
+    if (around.empty()) {
+      room[i] = 1;
+      continue;
+    }
+    std::sort(around.begin(), around.end());
+    const double r = e.radius[i];
+    for (std::size_t k = 0; k < around.size() && !room[i]; ++k) {
+      const auto& [ta, ra] = around[k];
+      const auto& [tb, rb] = around[(k + 1) % around.size()];
+      const double gap = k + 1 < around.size() ? tb - ta : tb - ta + 2.0 * std::numbers::pi;  // one alone: 2π
+      for (const double rn : kinds)
+        if (gap + 2.0 * kStartTurn >= least_separation(r, ra, rn) + least_separation(r, rn, rb)) room[i] = 1;
+    }
+  }
+  return room;
 }
 
 namespace {
@@ -229,13 +292,15 @@ double lanczos_max(int n, const std::function<void(const std::vector<double>&, s
   return 0.0;  // not reached
 }
 
-double apply_weighted(const StartNetwork& net, bool sticking, const std::function<double(const NetworkSpring&)>& weight,
-                      std::vector<double>& start) {
+/// λ_max of Σ (wk k + wc η) b bᵀ plus the diagonal wk·diag_k + wc·diag_c (G2, G5).
+double apply_weighted(const StartNetwork& net, bool sticking, double wk, double wc, std::vector<double>& start) {
+  const std::vector<double>& dk = sticking ? net.diag_k_stick : net.diag_k;
+  const std::vector<double>& dc = sticking ? net.diag_c_stick : net.diag_c;
   return lanczos_max(net.dofs, [&](const std::vector<double>& x, std::vector<double>& y) {
     std::fill(y.begin(), y.end(), 0.0);
     for (const NetworkSpring& s : net.springs) {
       if (s.coulomb_shear && !sticking) continue;
-      const double wgt = weight(s);
+      const double wgt = wk * s.k + wc * s.eta;
       if (wgt == 0.0) continue;
       double e = 0.0;
       for (int c = 0; c < 3; ++c) {
@@ -248,11 +313,13 @@ double apply_weighted(const StartNetwork& net, bool sticking, const std::functio
         if (s.dof_b >= 0) y[static_cast<std::size_t>(s.dof_b + c)] += s.bb[c] * e;
       }
     }
+    for (std::size_t d = 0; d < dk.size() && d < y.size(); ++d) y[d] += wk * dk[d] * x[d];
+    for (std::size_t d = 0; d < dc.size() && d < y.size(); ++d) y[d] += wc * dc[d] * x[d];
   }, start);
 }
 
 double rate_from(const StartNetwork& net, double dt, bool sticking, std::vector<double>& start) {
-  return apply_weighted(net, sticking, [dt](const NetworkSpring& s) { return dt * dt * s.k + 2.0 * dt * s.eta; }, start);  // (G2)
+  return apply_weighted(net, sticking, dt * dt, 2.0 * dt, start);  // (G2)
 }
 
 }  // namespace
@@ -264,7 +331,7 @@ double network_rate(const StartNetwork& net, double dt, bool sticking) {
 
 double network_eigenvalue(const StartNetwork& net, bool damping, bool sticking) {
   std::vector<double> start;
-  return apply_weighted(net, sticking, [damping](const NetworkSpring& s) { return damping ? s.eta : s.k; }, start);
+  return apply_weighted(net, sticking, damping ? 0.0 : 1.0, damping ? 1.0 : 0.0, start);
 }
 
 double eigen_limit(const StartNetwork& net, Integrator integrator, bool sticking, double lambda_new, double c_new,

@@ -1,6 +1,6 @@
 #pragma once
 // The time-step guard of a bonded structure from the largest eigenvalue of its assembled stiffness
-// and damping (docs/model.md §1 "Time step of a bonded structure", G1–G5); the Gershgorin guard of
+// and damping (docs/model.md §1 "Time step of a bonded structure", G1–G6); the Gershgorin guard of
 // stability.hpp stays the bound for everything that is not bonded at the start (a silo's disks).
 #include <cstdint>
 #include <vector>
@@ -27,10 +27,26 @@ struct StartNetwork {
   bool any_bond = false;
   double hopf = 0.0;                 // smallest η/K over the springs (K19's Hopf branch), sliding
   double hopf_stick = 0.0;           // the same with the Coulomb shear springs
+  std::vector<int> dof;              // per element: its first DOF, −1 if it has none (ground)
+  // (G5) per DOF, a mass-normalised diagonal term added to the springs' matrix (the contacts a bonded
+  // element can still form, bounded by their row share): stiffness [1/s²] and damping [1/s], without and
+  // with the Coulomb shear springs; empty: none
+  std::vector<double> diag_k, diag_c, diag_k_stick, diag_c_stick;
 };
 /// `only` (optional, per element): the free elements that keep their degrees of freedom; the others
 /// are ground, their springs acting on their partners alone (the bonded block of (G5)).
 StartNetwork start_network(const Model& m, const std::vector<std::uint8_t>* only = nullptr);
+
+/// (G6) Per element: whether a contact with a new partner can form beside the contacts it has at the
+/// start, i.e. whether some angular gap between consecutive start contacts holds the new one's direction
+/// with each start partner's direction turned by up to `kStartTurn` towards it. `new_radius`: the
+/// smallest radius of the elements that can become partners (+inf: none); `new_wall`: a wall can.
+/// Separations as the row-sum bound has them (overlaps ≤ 1 % of a radius): two elements of radii ρ_a,
+/// ρ_b around one of radius r at least acos(((r+ρ_a)² + (r+ρ_b)² − ((1−ε)(ρ_a+ρ_b))²) / (2(r+ρ_a)(r+ρ_b)))
+/// apart, an element and a segment wall acos((r − (1−ε)ρ)/(r+ρ)), two walls 0.
+std::vector<std::uint8_t> angular_room(const Model& m, double new_radius, bool new_wall);
+inline constexpr double kStartTurn = 0.0174532925199432958;  // 1° [rad]
+inline constexpr double kGuardOverlap = 0.01;                 // ε: the largest overlap the guard assumes, × a radius
 
 /// λ_max of Σ (Δt² k + 2Δt η) b bᵀ (G2) over the springs (Coulomb shear springs only if `sticking`),
 /// by Lanczos with full reorthogonalisation, plus its residual bound (an upper estimate).
