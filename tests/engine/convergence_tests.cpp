@@ -233,6 +233,14 @@ TEST_CASE("degenerate sequences", "[convergence]") {
     for (const auto& note : s.notes) noted |= note.find("oscillatorily") != std::string::npos;
     CHECK(noted);
   }
+  SECTION("monotone convergence, falling or rising, is not noted as oscillatory") {
+    for (const std::vector<double>& v : {std::vector<double>{1.4, 1.1, 1.025}, std::vector<double>{0.6, 0.9, 0.975}}) {
+      const auto s = ver::analyse_convergence({0.4, 0.2, 0.1}, v, options);
+      REQUIRE(s.three_level_order);
+      CHECK(*s.three_level_order == Approx(2.0).epsilon(1e-12));  // differences 0.3, 0.075: ratio 4
+      for (const auto& note : s.notes) CHECK(note.find("oscillatorily") == std::string::npos);
+    }
+  }
   SECTION("all errors zero: no orders, no Richardson, JSON still NaN-free") {
     const auto s = ver::analyse_convergence({0.4, 0.2, 0.1}, {1.0, 1.0, 1.0}, options);
     CHECK_FALSE(s.fitted_order);

@@ -304,6 +304,11 @@ TEST_CASE("Mistakes in a sensitivity file are refused before any run", "[study_f
              Contains("give all in one kind of unit"));
   CHECK_THAT(sens_refusal(sweep_planted("low = 0.1\nhigh = 0.9", "distribution = \"gauss\"\nlow = 0.1\nhigh = 0.9")),
              Contains("parameter.distribution"));
+  // a key of another distribution: levels on a uniform one, low on levels (each refused by name)
+  CHECK_THAT(sens_refusal(sweep_planted("low = 0.1\nhigh = 0.9", "low = 0.1\nhigh = 0.9\nlevels = [0.2, 0.5]")),
+             Contains("parameter.levels: a uniform distribution does not take levels"));
+  CHECK_THAT(sens_refusal(sweep_planted("low = 0.1\nhigh = 0.9", "distribution = \"levels\"\nlevels = [0.2, 0.5]\nlow = 0.1")),
+             Contains("parameter.low: a levels distribution does not take low"));
   CHECK_THAT(sens_refusal(sweep_planted("samples = 16", "samples = 16\nsecond_order_tolerance = 0.05")),
              Contains("second_order_tolerance: needs second_order = true"));
   CHECK_THAT(sens_refusal(sweep_planted("methods = [\"sobol\"]", "methods = [\"sobl\"]")), Contains("did you mean \"sobol\"?"));
@@ -338,4 +343,7 @@ TEST_CASE("The noise and delta keys of a sensitivity file are read strictly", "[
   CHECK_THAT(sens_refusal(planted("methods", "replicates = 1\nnoise_sd = 1.0\nmethods")), Contains("sensitivity.replicates"));
   CHECK_THAT(sens_refusal(planted("methods", "noise_sd = -1.0\nmethods")), Contains("sensitivity.noise_sd"));
   CHECK_THAT(sens_refusal(planted("bootstrap = 20", "bootstrap = 20\ntolerance = 0.05")), Contains("sobol.tolerance_reason: missing"));
+  // the convergence sample sizes are kept and checked in order
+  CHECK_THAT(sens_refusal(planted("bootstrap = 20", "bootstrap = 20\nconvergence = [16, 8]")),
+             Contains("sobol.convergence: expected increasing sample sizes"));
 }
