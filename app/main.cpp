@@ -58,7 +58,8 @@ namespace {
 constexpr const char* kExitCodes =
     "Exit status: 0 done (study, sweep: every check passed); 1 a study or sweep ran and a check failed; "
     "2 a mistake in the command line or an input file (case, study, sensitivity file, checkpoint), named with "
-    "file:line: key; 3 a run blew up (the message names the step and the bound); 4 an output could not be written "
+    "file:line: key; 3 a run blew up or its time-step guard, evaluated again (numerics.guard_reach), refused Δt (the message "
+    "names the step and the bound); 4 an output could not be written "
     "(full disk, unwritable folder); 128 + the signal when stopped by SIGINT (130) or SIGTERM (143), everything "
     "finished written.";
 
@@ -128,7 +129,7 @@ int cmd_run(const fs::path& file, const std::vector<std::string>& sets, fs::path
     }
     fmt::print("  written to {}\n", out.string());
   }
-  if (r.status == "blow-up") {
+  if (r.status == "blow-up" || r.status == "refused") {  // refused: the guard's re-check (docs/model.md G7)
     fmt::print(stderr, "error: {}: {}\n", file.string(), r.message);
     return 3;
   }

@@ -180,6 +180,7 @@ integrator = "K19"
 dt = "{dt}"
 duration = "40 ms"
 energy_limit = "10 J"                  # the platen does at most P_max x travel ~ 1 J of work
+guard_reach = "5 mm"                   # the time-step guard's partners: those within 5 mm of a free element (G7)
 
 [output]
 series = [{series_text}]

@@ -131,8 +131,8 @@ def _read_contacts(csv_path):
 
 
 class Result:
-    """A finished run: status ("completed", "settled", "past peak", "blow-up", "interrupted"), message,
-    steps, time [s], wall_seconds, probes {name: value in SI or None}, summary (summary.json as a dict),
+    """A finished run: status ("completed", "settled", "past peak", "blow-up", "interrupted", "refused": the
+    time-step guard's re-check, docs/model.md G7), message, steps, time [s], wall_seconds, probes {name: value in SI or None}, summary (summary.json as a dict),
     series (series.csv: a pandas DataFrame, SI units in the column names), contacts (contacts.csv, when the
     case asks for it with [output] contacts = true, else None), out (the output folder or None)."""
 

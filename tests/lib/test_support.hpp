@@ -67,6 +67,19 @@ inline dem::PairLaw bonded_face_law(int segments, double kn, double ks, double h
   return law;
 }
 
+/// Materials "block" (0, 2000 kg/m³) and "disk" (1, 2650 kg/m³), K18: blocks bonded face to face by
+/// `face_kn` (2 segments at the face ends, K_s = 0, no dashpots) and a linear law `disk_kn` (μ = 0.5, no
+/// dashpots) between a block and a disk; no elements yet (the guard's block and room tests).
+inline dem::Model blocks_and_disk_laws(double face_kn, double disk_kn) {
+  dem::Model m = make_model({{"block", 2000.0}, {"disk", 2650.0}}, 1e-7);
+  m.numerics.integrator = dem::Integrator::k18;
+  dem::PairLaw law = bonded_face_law(2, face_kn, 0.0, 0.0);
+  law.face.positions = dem::SegmentPositions::ends;
+  set_law(m, 0, 0, law);
+  set_law(m, 0, 1, linear_law(disk_kn, 0.0, 0.5, 0.0, 0.0));
+  return m;
+}
+
 /// Writes `text` to a fresh file in a per-test temporary folder and returns its path.
 inline std::filesystem::path write_temp(const std::string& name, const std::string& text) {
   const auto dir = std::filesystem::temp_directory_path() / "dem2d_unit_lib";

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The guard's limits pinned as check values in verification/beam_stability/study.toml are the ones
-`dem2d check` prints now, for each variant's overrides: a change of the guard (docs/model.md G1-G6)
+`dem2d check` prints now, for each variant's overrides: a change of the guard (docs/model.md G1-G7)
 that leaves the study's pinned values stale fails here.
 
 Usage: check_guard_values.py DEM2D STUDY_TOML [--scale S]   (--scale: plant a stale value, expect failure)

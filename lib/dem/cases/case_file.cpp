@@ -782,6 +782,8 @@ void Reader::read_numerics(const TableReader& top) {
     non_negative(r, "energy_limit", n.energy_limit);
     n.max_step_fraction = r.number("max_step_fraction", 0.25);
     positive(r, "max_step_fraction", n.max_step_fraction);
+    n.guard_reach = r.quantity("guard_reach", dims::length, std::numeric_limits<double>::infinity());
+    positive(r, "guard_reach", n.guard_reach);
     // spatial reordering every this many neighbour-list rebuilds (core/spatial_order.hpp); 0: never
     n.reorder_every = r.integer("reorder_every", 0, std::int64_t{1} << 40, 0);
     if (n.reorder_every > 0)

@@ -240,6 +240,7 @@ std::vector<TableSpec> run_tables() {
           flag("allow_unstable", "run above the stability limit", false),
           q("energy_limit", {d::energy}, "replaces the automatic blow-up bound"),
           num("max_step_fraction", "blow-up when an element moves more than this times its radius in one step", 0.25),
+          q("guard_reach", {d::length}, "the time-step guard's partners: those a free element reaches moving at most this far (default: all; docs/model.md G7)"),
           whole("reorder_every", "renumber elements in space every this many rebuilds (0: never; linear laws only)", 0,
                 std::int64_t{1} << 40, 0),
       }},

@@ -2,6 +2,7 @@
 // Everything a run needs, resolved to SI: materials, contact laws per material pair, elements,
 // walls, numerics. Built by the case reader (case_file.hpp) or directly in tests.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,10 @@ struct Numerics {
   double max_step_fraction = 0.25;  // blow-up: no element may move more than this × its radius in one step
   std::int64_t reorder_every = 0;   // reorder the elements in space every this many neighbour-list
                                     // rebuilds (spatial_order.hpp; 0: never, the default; linear laws only)
+  // The time-step guard counts as partners only the elements a free element can reach when each free
+  // element moves at most this far [m] (docs/model.md G7); the run evaluates the guard again when one
+  // moves farther. +inf (the default): every element counts.
+  double guard_reach = std::numeric_limits<double>::infinity();
 };
 
 /// A static preload: before the first step the element is moved rigidly (rotated by `rotation` about

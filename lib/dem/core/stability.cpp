@@ -473,6 +473,53 @@ std::vector<Stats> material_stats(const Elements& e, std::size_t nm) {
   return st;
 }
 
+/// (G7) Per class pair (a, b), row a·nm + b: how many class-b elements a free class-a element may touch.
+/// Without numerics.guard_reach every active one; with it R, those within reach of some free class-a
+/// element: gap ≤ R_i + R_j, a free element moving at most R, a fixed one 0, a driven one any distance.
+/// (The run evaluates the guard again when a free element moves farther than R: run.cpp.)
+std::vector<int> partner_counts(const Model& m, const std::vector<Stats>& st) {
+  const std::size_t nm = st.size();
+  const Elements& e = m.elements;
+  std::vector<int> counts(nm * nm, 0);
+  const double reach = m.numerics.guard_reach;
+  if (!std::isfinite(reach)) {
+    for (std::size_t a = 0; a < nm; ++a)
+      for (std::size_t b = 0; b < nm; ++b) counts[a * nm + b] = st[b].count;
+    return counts;
+  }
+  auto own_reach = [&](std::size_t i) { return e.motion[i] == Motion::free ? reach : e.motion[i] == Motion::fixed ? 0.0 : inf; };
+  std::vector<std::uint8_t> near(e.size() * nm, 0);  // element j may touch a free element of class a
+  std::vector<std::size_t> order;
+  double r_max = 0.0;
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    if (!e.active[i]) continue;
+    r_max = std::max(r_max, e.radius[i]);
+    if (e.motion[i] == Motion::driven) {  // within reach of everything
+      for (std::size_t a = 0; a < nm; ++a) near[i * nm + a] = 1;
+    } else {
+      order.push_back(i);
+    }
+  }
+  std::vector<std::uint8_t> free_class(nm, 0);  // classes with a free element
+  for (std::size_t i : order) free_class[static_cast<std::size_t>(e.material[i])] |= e.motion[i] == Motion::free ? 1 : 0;
+  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return e.x[p] < e.x[q]; });
+  for (std::size_t k = 0; k < order.size(); ++k)  // pairs within 2 r_max + 2R in x, sorted sweep
+    for (std::size_t l = k + 1; l < order.size() && e.x[order[l]] - e.x[order[k]] <= 2.0 * (r_max + reach); ++l) {
+      const std::size_t i = order[k], j = order[l];
+      const double gap = std::hypot(e.x[j] - e.x[i], e.y[j] - e.y[i]) - e.radius[i] - e.radius[j];
+      if (gap > own_reach(i) + own_reach(j)) continue;
+      if (e.motion[i] == Motion::free) near[j * nm + static_cast<std::size_t>(e.material[i])] = 1;
+      if (e.motion[j] == Motion::free) near[i * nm + static_cast<std::size_t>(e.material[j])] = 1;
+    }
+  for (std::size_t j = 0; j < e.size(); ++j)
+    if (e.active[j])
+      for (std::size_t a = 0; a < nm; ++a)
+        if (near[j * nm + a] && free_class[a]) ++counts[a * nm + static_cast<std::size_t>(e.material[j])];
+  // a class's own elements: an element is not its own partner (the union above may count it)
+  for (std::size_t a = 0; a < nm; ++a) counts[a * nm + a] = std::min(counts[a * nm + a], st[a].count - 1) + 1;
+  return counts;
+}
+
 /// The rates of the contacts that can still form (G4): the largest Gershgorin rates over the classes
 /// that have free elements not bonded at the start.
 struct ClassRates {
@@ -681,6 +728,7 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
   const StartNetwork net = start_network_if_bonded(m);
   ClassRates unbonded;  // the Gershgorin rates of the classes with free elements not bonded at the start
   std::vector<BlockClass> info(nm);  // for the block bound (G5)
+  const std::vector<int> reachable = partner_counts(m, st);  // (G7)
   for (std::size_t a = 0; a < nm; ++a) {
     const Stats& s = st[a];
     if (s.free_count == 0) continue;
@@ -690,7 +738,7 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
     int partners = 0;
     for (std::size_t b = 0; b < nm; ++b) {
       const std::int32_t law = m.law_of_pair[a * nm + b];
-      const int others = st[b].count - (a == b ? 1 : 0);
+      const int others = reachable[a * nm + b] - (a == b ? 1 : 0);
       if (law < 0 || others <= 0) continue;
       by_class.emplace_back(contact_kind(m, law, s, &st[b]), others);
       elem.merge(by_class.back().first);
@@ -757,7 +805,6 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
     const Arrangement acs = same(&Kind::c, &Kind::c_stick) ? ac : run(&Kind::c_stick);
     const ExtraRates x = extra_rates(e, extra, a);
     const double xk = x.k, xc = x.c, xhopf = x.hopf;
-    const std::string& xsrc = x.sources;
     const double hopf = std::min({elem.present ? elem.hopf : inf, seg.present ? seg.hopf : inf, pt.present ? pt.hopf : inf, xhopf});
     const double hopf_s = std::min({elem.present ? elem.hopf_stick : inf, seg.present ? seg.hopf_stick : inf,
                                     pt.present ? pt.hopf_stick : inf, xhopf});
@@ -800,15 +847,14 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
       std::sort(laws.begin(), laws.end());
       laws.erase(std::unique(laws.begin(), laws.end()), laws.end());
       out.law = fmt::format("{}", fmt::join(laws, ", "));
-      if (!xsrc.empty()) out.law += (out.law.empty() ? "" : " + ") + xsrc;
+      if (!x.sources.empty()) out.law += (out.law.empty() ? "" : " + ") + x.sources;
       out.element_contacts = ak.d;
       out.wall_contacts = ak.s + ak.p;
       out.stiffness_rate = lam;
       out.damping_rate = c;
     }
   }
-  out.limit_gershgorin = out.limit;
-  out.limit_gershgorin_sticking = out.limit_sticking;
+  out.limit_gershgorin = out.limit, out.limit_gershgorin_sticking = out.limit_sticking;
   if (net.any_bond) apply_eigen_bound(m, net, with_bonded_growth(m, st, info, unbonded), out);
   if (net.any_bond) apply_block_bound(m, net, st, info, out);
   return out;

@@ -1,6 +1,6 @@
 #pragma once
 // The time-step guard of a bonded structure from the largest eigenvalue of its assembled stiffness
-// and damping (docs/model.md §1 "Time step of a bonded structure", G1–G6); the Gershgorin guard of
+// and damping (docs/model.md §1 "Time step of a bonded structure", G1–G7); the Gershgorin guard of
 // stability.hpp stays the bound for everything that is not bonded at the start (a silo's disks).
 #include <cstdint>
 #include <vector>

@@ -142,6 +142,7 @@ nlohmann::json resolved_case_si(const Case& c) {
                    {"energy_limit", n.energy_limit},
                    {"max_step_fraction", n.max_step_fraction}};
   if (n.reorder_every > 0) j["numerics"]["reorder_every"] = n.reorder_every;  // (absent: 0, never)
+  if (std::isfinite(n.guard_reach)) j["numerics"]["guard_reach"] = n.guard_reach;  // (absent: +inf, every element)
   nlohmann::json mats = nlohmann::json::array();
   for (const Material& mt : m.materials) mats.push_back({{"name", mt.name}, {"density", mt.density}});
   j["materials"] = mats;

@@ -16,6 +16,7 @@
 
 #include "dem/run/quantities.hpp"
 #include "dem/core/simulation.hpp"
+#include "dem/core/stability.hpp"
 #include "dem/run/checkpoint.hpp"
 #include "dem/run/interrupt.hpp"
 #include "dem/run/loop_state.hpp"
@@ -193,6 +194,39 @@ struct RunLoop {
                             std::sqrt(o.fraction2), m.numerics.max_step_fraction, limit, m.numerics.dt));
   }
 
+  // numerics.guard_reach (docs/model.md G7): the guard counted as partners only the elements within reach
+  // of where the free elements were when it was evaluated; once one has moved farther, the guard of the
+  // current positions is evaluated again (and becomes the new reference), and Δt above it stops the run
+  std::vector<double> guard_x, guard_y;  // by element id: the positions the guard last assumed [m]
+  void keep_guard_positions() {
+    const Elements& e = m.elements;
+    guard_x.assign(e.size(), 0.0), guard_y.assign(e.size(), 0.0);
+    for (std::size_t i = 0; i < e.size(); ++i) guard_x[sim.id_of(i)] = e.x[i], guard_y[sim.id_of(i)] = e.y[i];
+  }
+  bool outside_guard_reach(bool now) {
+    const double reach = m.numerics.guard_reach;
+    if (!std::isfinite(reach)) return false;
+    const Elements& e = m.elements;
+    std::int64_t moved = -1;
+    for (std::size_t i = 0; i < e.size() && !now && moved < 0; ++i) {
+      if (!e.active[i] || e.motion[i] != Motion::free) continue;
+      const std::uint32_t id = sim.id_of(i);
+      if (std::hypot(e.x[i] - guard_x[id], e.y[i] - guard_y[id]) > reach) moved = static_cast<std::int64_t>(i);
+    }
+    if (!now && moved < 0) return false;
+    const double before = limit;
+    limit = assembly_stability_bound(m, registered_stability_terms(m)).limit;
+    res.stability_limit = std::min(res.stability_limit, limit);
+    keep_guard_positions();
+    if ((m.numerics.dt <= limit && !std::isnan(limit)) || m.numerics.allow_unstable) return false;
+    const std::string why = moved >= 0 ? fmt::format("element {} moved more than numerics.guard_reach = {:.4g} m from where the "
+                                                     "time-step guard last assumed it", sim.id_of(static_cast<std::size_t>(moved)), reach)
+                                       : std::string("the run restarts from a checkpoint");
+    return stop("refused", fmt::format("stopped at t = {:.6g} s (step {}): {}; the guard of the current positions is "
+                                       "{:.6g} s (before: {:.6g} s), below dt = {:.6g} s (docs/model.md G7)",
+                                       sim.time(), sim.steps(), why, limit, before, m.numerics.dt));
+  }
+
   // discharge (core/discharge.hpp): disks below the outlet line leave the run; a stalled arch loses
   // its keystone once no disk has left for keystone_after
   // (the model is taken mutable only in a step that removes a disk: that voids the rebuild test the
@@ -292,7 +326,9 @@ void RunLoop::steps() {
   const std::int64_t check_every = 64;
   const bool forces = forces_every_step(c, !probes.empty(), static_cast<bool>(peak_quantity), opt);
   const std::int64_t first_step = sim.steps();
-  for (std::int64_t k = first_step; k < total_steps; ++k) {
+  keep_guard_positions();
+  const bool refused = first_step > 0 && outside_guard_reach(true);  // a restart: the guard of its positions
+  for (std::int64_t k = first_step; !refused && k < total_steps; ++k) {
     open_slit_when_due();
     sim.keep_contact_forces(forces || k + 1 == total_steps || interrupt_signal() != 0 ||
                             sim.steps() + 1 == opt.interrupt_at_step);
@@ -303,7 +339,7 @@ void RunLoop::steps() {
       loop.scale = energy_scale(m, e1.kinetic + e1.elastic);
       loop.energy_limit = energy_factor * loop.scale.total + 1e-300;
     }
-    if (overstepped()) break;
+    if (overstepped() || outside_guard_reach(false)) break;
     discharge();
     for (auto& p : probes) sample_probe(p, sim);
     if (settled() || fell_past_peak()) break;

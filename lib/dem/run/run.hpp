@@ -32,7 +32,7 @@ struct RunOptions {
 };
 
 struct RunResult {
-  std::string status;   // "completed", "settled", "past peak" ([stop] after_peak), "blow-up", "interrupted"
+  std::string status;   // "completed", "settled", "past peak" ([stop] after_peak), "blow-up", "interrupted", "refused" (G7)
   std::string message;  // what happened, for a blow-up or a settle stop
   std::int64_t steps = 0;
   double time = 0.0;                 // simulated [s]

@@ -33,12 +33,7 @@ dem::Model disk_with_partners(bool stiff) {
 /// λ = 6 face_kn/m, stability_eigen_tests) and a free disk of `disk_mass` far away, a linear law
 /// `disk_kn` with the blocks, K18.
 dem::Model pair_and_disk(double face_kn, double disk_kn, double disk_mass) {
-  dem::Model m = test::make_model({{"block", 2000.0}, {"disk", 2650.0}}, 1e-7);
-  m.numerics.integrator = dem::Integrator::k18;
-  dem::PairLaw law = test::bonded_face_law(2, face_kn, 0.0, 0.0);
-  law.face.positions = dem::SegmentPositions::ends;
-  test::set_law(m, 0, 0, law);
-  test::set_law(m, 0, 1, test::linear_law(disk_kn, 0.0, 0.5, 0.0, 0.0));
+  dem::Model m = test::blocks_and_disk_laws(face_kn, disk_kn);
   dem::add_element(m, dem::Shape::pre, 0, r, {0.0, 0.0}, {}, 0.0, dem::PreMass::square, 0.5);
   dem::add_element(m, dem::Shape::pre, 0, r, {2 * r, 0.0}, {}, 0.0, dem::PreMass::square, 0.5);
   dem::add_element(m, dem::Shape::disk, 1, r, {1.0, 1.0}, {}, 0.0, dem::PreMass::square, disk_mass);

@@ -22,12 +22,7 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 /// ends, K_s = 0, no dashpots), element 4 in the centre, 1 the middle of the top row; and, if `disk_y` is
 /// finite, a free disk (material 1, radius r, `disk_mass`) at (0, disk_y) with a linear law `disk_kn`, K18.
 dem::Model lattice(double face_kn, double disk_kn, double disk_mass, double disk_y) {
-  dem::Model m = test::make_model({{"block", 2000.0}, {"disk", 2650.0}}, 1e-7);
-  m.numerics.integrator = dem::Integrator::k18;
-  dem::PairLaw law = test::bonded_face_law(2, face_kn, 0.0, 0.0);
-  law.face.positions = dem::SegmentPositions::ends;
-  test::set_law(m, 0, 0, law);
-  test::set_law(m, 0, 1, test::linear_law(disk_kn, 0.0, 0.5, 0.0, 0.0));
+  dem::Model m = test::blocks_and_disk_laws(face_kn, disk_kn);
   for (int row = 0; row < 3; ++row)  // top row first: y = 2r, 0, −2r
     for (int col = 0; col < 3; ++col)
       dem::add_element(m, dem::Shape::pre, 0, r, {2 * r * (col - 1), 2 * r * (1 - row)}, {}, 0.0, dem::PreMass::square, m_pre);
