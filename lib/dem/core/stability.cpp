@@ -477,7 +477,7 @@ std::vector<Stats> material_stats(const Elements& e, std::size_t nm) {
 /// Without numerics.guard_reach every active one; with it R, those within reach of some free class-a
 /// element: gap ≤ R_i + R_j, a free element moving at most R, a fixed one 0, a driven one any distance.
 /// (The run evaluates the guard again when a free element moves farther than R: run.cpp.)
-std::vector<int> partner_counts(const Model& m, const std::vector<Stats>& st) {
+std::vector<int> partner_counts(const Model& m, const std::vector<Stats>& st, std::string& assumptions) {
   const std::size_t nm = st.size();
   const Elements& e = m.elements;
   std::vector<int> counts(nm * nm, 0);
@@ -487,6 +487,8 @@ std::vector<int> partner_counts(const Model& m, const std::vector<Stats>& st) {
       for (std::size_t b = 0; b < nm; ++b) counts[a * nm + b] = st[b].count;
     return counts;
   }
+  assumptions += fmt::format("; element partners only within reach, each free element moving at most numerics.guard_reach = "
+                             "{:.4g} m, a fixed one not at all (G7; the run evaluates the guard again past it)", reach);
   auto own_reach = [&](std::size_t i) { return e.motion[i] == Motion::free ? reach : e.motion[i] == Motion::fixed ? 0.0 : inf; };
   std::vector<std::uint8_t> near(e.size() * nm, 0);  // element j may touch a free element of class a
   std::vector<std::size_t> order;
@@ -728,7 +730,7 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
   const StartNetwork net = start_network_if_bonded(m);
   ClassRates unbonded;  // the Gershgorin rates of the classes with free elements not bonded at the start
   std::vector<BlockClass> info(nm);  // for the block bound (G5)
-  const std::vector<int> reachable = partner_counts(m, st);  // (G7)
+  const std::vector<int> reachable = partner_counts(m, st, out.assumptions);  // (G7)
   for (std::size_t a = 0; a < nm; ++a) {
     const Stats& s = st[a];
     if (s.free_count == 0) continue;
