@@ -584,34 +584,53 @@ struct BlockClass {
   double xk = 0.0, xc = 0.0;           // the extra terms alone (base friction): every element has them
 };
 
-/// Per class with bonded free elements: the rates one of them can add by the contacts it can still form
-/// (G4, G5): its wall contacts and extra terms, and one contact with each unbonded free partner it can
-/// reach (at most its coordination), each counted as that contact's whole row share w + b.
-std::vector<ClassRates> bonded_growth(const Model& m, const std::vector<Stats>& st, const std::vector<BlockClass>& info) {
+/// Per element (bonded free ones; the others get nothing): the rates it can add by the contacts it can
+/// still form (G4, G5): its class's wall contacts and extra terms, and one contact with each partner it
+/// can reach that is not a bonded free element (an unbonded free element, a fixed or a driven one: within
+/// reach as G7 has it), at most its class's coordination of them, each counted as that contact's whole
+/// row share w + b (the largest over the partners' classes).
+std::vector<ClassRates> element_growth(const Model& m, const StartNetwork& net, const std::vector<Stats>& st,
+                                       const std::vector<BlockClass>& info) {
   const std::size_t nm = m.materials.size();
-  int free_unbonded = 0;
-  for (const BlockClass& c : info) free_unbonded += c.unbonded_free;
-  std::vector<ClassRates> grows(nm);
-  for (std::size_t a = 0; a < nm; ++a) {
-    if (!info[a].bonded_free) continue;
-    Kind touch;  // one contact with any unbonded free partner, its whole row share w + b
-    for (std::size_t u = 0; u < nm; ++u)
-      if (const std::int32_t law = m.law_of_pair[a * nm + u]; law >= 0 && info[u].unbonded_free > 0) touch.merge(contact_kind(m, law, st[a], &st[u]));
-    const double n = std::min(info[a].zd, free_unbonded);
+  const Elements& e = m.elements;
+  const double reach = m.numerics.guard_reach;
+  auto own_reach = [&](std::size_t i) { return e.motion[i] == Motion::free ? reach : e.motion[i] == Motion::fixed ? 0.0 : inf; };
+  std::vector<std::size_t> others;  // the partners that can still come: not bonded free elements
+  for (std::size_t j = 0; j < e.size(); ++j)
+    if (e.active[j] && !(e.motion[j] == Motion::free && net.bonded[j])) others.push_back(j);
+  std::vector<Kind> kinds(nm * nm);  // contact_kind per (class of i, class of j), made when first needed
+  std::vector<ClassRates> out(e.size());
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    if (!e.active[i] || e.motion[i] != Motion::free || !net.bonded[i]) continue;
+    const auto a = static_cast<std::size_t>(e.material[i]);
+    Kind touch;
+    int n = 0;
+    for (std::size_t j : others) {
+      const auto b = static_cast<std::size_t>(e.material[j]);
+      const std::int32_t law = m.law_of_pair[a * nm + b];
+      if (law < 0) continue;
+      const double gap = std::hypot(e.x[j] - e.x[i], e.y[j] - e.y[i]) - e.radius[i] - e.radius[j];
+      if (gap <= 1e-9 * (e.radius[i] + e.radius[j])) continue;  // touching at the start: in the start network already
+      if (std::isfinite(reach) && gap > own_reach(i) + own_reach(j)) continue;  // (G7)
+      Kind& k = kinds[a * nm + b];
+      if (!k.present) k = contact_kind(m, law, st[a], &st[b]);
+      touch.merge(k);
+      ++n;
+    }
+    const double c = std::min(info[a].zd, n);
     const ClassRates& w = info[a].walls;
-    grows[a].add(w.lam + n * (touch.k.w + touch.k.b), w.c + n * (touch.c.w + touch.c.b), std::min(w.hopf, touch.hopf),
-                 w.lam_s + n * (touch.k_stick.w + touch.k_stick.b), w.c_s + n * (touch.c_stick.w + touch.c_stick.b),
-                 std::min(w.hopf_s, touch.hopf_stick));
+    out[i].add(w.lam + c * (touch.k.w + touch.k.b), w.c + c * (touch.c.w + touch.c.b), std::min(w.hopf, touch.hopf),
+               w.lam_s + c * (touch.k_stick.w + touch.k_stick.b), w.c_s + c * (touch.c_stick.w + touch.c_stick.b),
+               std::min(w.hopf_s, touch.hopf_stick));
   }
-  return grows;
+  return out;
 }
 
 /// (G4) The new contacts' matrix has rows on both sides: to the unbonded classes' row sums `u` add the
-/// bonded classes' rows (their wall contacts and their contacts with unbonded partners).
-ClassRates with_bonded_growth(const Model& m, const std::vector<Stats>& st, const std::vector<BlockClass>& info, ClassRates u) {
-  const std::vector<ClassRates> grows = bonded_growth(m, st, info);
-  for (std::size_t a = 0; a < grows.size(); ++a)
-    if (info[a].bonded_free) u.add(grows[a].lam, grows[a].c, grows[a].hopf, grows[a].lam_s, grows[a].c_s, grows[a].hopf_s);
+/// largest row of a bonded element (its wall contacts and its contacts with the partners it can reach).
+ClassRates with_bonded_growth(const Model& m, const StartNetwork& net, const std::vector<Stats>& st,
+                              const std::vector<BlockClass>& info, ClassRates u) {
+  for (const ClassRates& g : element_growth(m, net, st, info)) u.add(g.lam, g.c, g.hopf, g.lam_s, g.c_s, g.hopf_s);
   return u;
 }
 
@@ -619,8 +638,8 @@ ClassRates with_bonded_growth(const Model& m, const std::vector<Stats>& st, cons
 /// free elements form one block L, each unbonded free element u a block of its own. Feingold–Varga:
 ///   λ_max ≤ max( λ_max(A_LL) + Σ_u ‖A_Lu‖,  max_u [λ_max(A_uu) + Σ_j ‖A_uj‖] ).
 /// The u rows are the row-sum bounds of u's class. A_LL is the start network with every other body
-/// grounded (their springs act on L alone), plus the wall contacts L can form (G4) and one contact
-/// per possible partner u (at most z_a of them); ‖A_Lu‖ ≤ √(z_u)·b, as each bonded element touches u
+/// grounded (their springs act on L alone), plus, as a diagonal on each bonded element with angular room
+/// (G6), the rates of the contacts it can still form (element_growth); ‖A_Lu‖ ≤ √(z_u)·b, as each bonded element touches u
 /// at most once and u touches at most z_u of them (‖Σ_c B_c‖² ≤ Σ_c ‖B_c‖² for blocks on disjoint
 /// rows). Unlike (G4)'s Weyl sum, the lattice's and the load disk's largest rates are not added.
 void apply_block_bound(const Model& m, const StartNetwork& net, const std::vector<Stats>& st,
@@ -649,25 +668,22 @@ void apply_block_bound(const Model& m, const StartNetwork& net, const std::vecto
     coupling.lam += info[u].unbonded_free * z * b[0], coupling.c += info[u].unbonded_free * z * b[1];
     coupling.lam_s += info[u].unbonded_free * z * b[2], coupling.c_s += info[u].unbonded_free * z * b[3];
   }
-  const std::vector<ClassRates> grows = bonded_growth(m, st, info);
-  for (std::size_t a = 0; a < nm; ++a)
-    if (info[a].bonded_free) grown.add(grows[a].lam, grows[a].c, grows[a].hopf, grows[a].lam_s, grows[a].c_s, grows[a].hopf_s);
+  const std::vector<ClassRates> grows = element_growth(m, net, st, info);
+  for (const ClassRates& g : grows) grown.add(g.lam, g.c, g.hopf, g.lam_s, g.c_s, g.hopf_s);
   // (G6) the new contacts as a diagonal on the DOFs of the bonded elements with angular room for one; the
   // others keep only the extra terms (base friction)
   const Elements& e = m.elements;
-  double new_radius = inf;
+  double new_radius = inf;  // the smallest element that can still come: not a bonded free one
   for (std::size_t i = 0; i < e.size(); ++i)
-    if (e.active[i] && e.motion[i] == Motion::free && !net.bonded[i]) new_radius = std::min(new_radius, e.radius[i]);
-  bool new_wall = false;
-  for (const Wall& w : m.walls) new_wall = new_wall || !w.open;
-  const std::vector<std::uint8_t> room = angular_room(m, new_radius, new_wall);
+    if (e.active[i] && !(e.motion[i] == Motion::free && net.bonded[i])) new_radius = std::min(new_radius, e.radius[i]);
+  const std::vector<std::uint8_t> room = angular_room(m, new_radius);
   StartNetwork bonded = start_network(m, &net.bonded);
   for (auto* d : {&bonded.diag_k, &bonded.diag_c, &bonded.diag_k_stick, &bonded.diag_c_stick}) d->assign(static_cast<std::size_t>(bonded.dofs), 0.0);
   int with_room = 0;
   for (std::size_t i = 0; i < e.size(); ++i) {
     if (bonded.dof[i] < 0) continue;
     const auto a = static_cast<std::size_t>(e.material[i]);
-    const ClassRates& g = grows[a];
+    const ClassRates& g = grows[i];
     const double v[4] = {room[i] ? g.lam : info[a].xk, room[i] ? g.c : info[a].xc, room[i] ? g.lam_s : info[a].xk, room[i] ? g.c_s : info[a].xc};
     with_room += room[i] ? 1 : 0;
     for (int k = 0; k < 3; ++k) {
@@ -857,7 +873,7 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
     }
   }
   out.limit_gershgorin = out.limit, out.limit_gershgorin_sticking = out.limit_sticking;
-  if (net.any_bond) apply_eigen_bound(m, net, with_bonded_growth(m, st, info, unbonded), out);
+  if (net.any_bond) apply_eigen_bound(m, net, with_bonded_growth(m, net, st, info, unbonded), out);
   if (net.any_bond) apply_block_bound(m, net, st, info, out);
   return out;
 }

@@ -15,6 +15,16 @@ namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double kTouch = 1e-9;  // a pair touches at the start if its gap is below this × the radius
+// A bonded pair still acts in tension, up to its strength (a strain of ~1e-3 for Matsui's mortar): when the
+// guard is evaluated again during a run (G7) it counts a bonded pair apart by up to this × the radii.
+constexpr double kBondStretch = 0.05;
+
+/// Bonded as face_geometry.hpp has it: a face law bonding at the start, or one lattice group (j < 0: a wall).
+bool bonds_at_start(const Model& m, const PairLaw& law, std::size_t i, std::int64_t j) {
+  if (law.kind != LawKind::face) return false;
+  const Elements& e = m.elements;
+  return law.bond_at_start || (j >= 0 && e.group[i] >= 0 && e.group[i] == e.group[static_cast<std::size_t>(j)]);
+}
 
 /// The rows b of a spring acting along the unit vector d at point p between element i (or ground, −1)
 /// and element j (or ground): extension = d·(u_j + θ_j k×(p − c_j)) − d·(u_i + θ_i k×(p − c_i)), each
@@ -91,12 +101,7 @@ StartNetwork start_network(const Model& m, const std::vector<std::uint8_t>* only
   for (std::size_t i = 0; i < n; ++i)  // checked access: once per guard, O(n)
     if (e.active.at(i) && e.motion.at(i) == Motion::free && (only == nullptr || only->at(i))) dof.at(i) = 3 * (net.dofs++);
   net.dofs *= 3;
-  // bonded at the start as face_geometry.hpp has it: a face law bonding at the start, or one lattice group
-  auto bonds = [&](const PairLaw& law, std::size_t i, std::int64_t j) {
-    if (law.kind != LawKind::face) return false;
-    return law.bond_at_start ||
-           (j >= 0 && e.group[i] >= 0 && e.group[i] == e.group[static_cast<std::size_t>(j)]);
-  };
+  auto bonds = [&](const PairLaw& law, std::size_t i, std::int64_t j) { return bonds_at_start(m, law, i, j); };
   auto mark = [&](std::size_t i) { net.bonded[i] = 1, net.any_bond = true; };
   // element pairs touching at the start (the guard runs this only for models with bonds: O(n²) is fine
   // for lattices; a silo without bonds never gets here)
@@ -107,8 +112,9 @@ StartNetwork start_network(const Model& m, const std::vector<std::uint8_t>* only
       const std::int32_t li = m.law_index(e.material[i], e.material[j]);
       if (li < 0) continue;
       const double dx = e.x[j] - e.x[i], dy = e.y[j] - e.y[i], dist = std::hypot(dx, dy);
-      if (dist > (e.radius[i] + e.radius[j]) * (1.0 + kTouch) || dist == 0.0) continue;
       const PairLaw& law = m.laws[static_cast<std::size_t>(li)];
+      const double touch = bonds(law, i, static_cast<std::int64_t>(j)) ? kBondStretch : kTouch;
+      if (dist > (e.radius[i] + e.radius[j]) * (1.0 + touch) || dist == 0.0) continue;
       add_contact(m, dof, law, static_cast<int>(i), static_cast<int>(j), {dx / dist, dy / dist}, net);
       if (bonds(law, i, static_cast<std::int64_t>(j))) mark(i), mark(j);
     }
@@ -119,8 +125,8 @@ StartNetwork start_network(const Model& m, const std::vector<std::uint8_t>* only
       const Vec2 c{e.x[i], e.y[i]};
       const Vec2 q = closest_point(w, c) - c;
       const double dist = norm(q);
-      if (dist > e.radius[i] * (1.0 + kTouch) || dist == 0.0) continue;
       const PairLaw& law = m.laws[static_cast<std::size_t>(li)];
+      if (dist > e.radius[i] * (1.0 + (bonds(law, i, -1) ? kBondStretch : kTouch)) || dist == 0.0) continue;
       add_contact(m, dof, law, static_cast<int>(i), -1, {q.x / dist, q.y / dist}, net);
       if (bonds(law, i, -1)) mark(i);
     }
@@ -147,32 +153,52 @@ double least_separation(double r, double rho_a, double rho_b) {
 
 }  // namespace
 
-std::vector<std::uint8_t> angular_room(const Model& m, double new_radius, bool new_wall) {
+std::vector<std::uint8_t> angular_room(const Model& m, double new_radius) {
   const Elements& e = m.elements;
   const std::size_t n = e.size();
+  const double reach = m.numerics.guard_reach;
+  constexpr double wall = std::numeric_limits<double>::infinity();
+  // how far a wall may travel in the run: its drive's fastest speed over the duration (static: 0)
+  std::vector<double> travel(m.walls.size(), 0.0);
+  for (std::size_t w = 0; w < m.walls.size(); ++w)
+    if (const std::int32_t d = m.walls[w].drive; d >= 0)
+      for (const Vec2 v : m.drives[static_cast<std::size_t>(d)].v) travel[w] = std::max(travel[w], norm(v) * m.numerics.duration);
   std::vector<std::uint8_t> room(n, 0);
-  std::vector<double> kinds;  // the new partners' radii, +inf for a wall
-  if (new_wall) kinds.push_back(std::numeric_limits<double>::infinity());
-  if (std::isfinite(new_radius)) kinds.push_back(new_radius);
-  if (kinds.empty()) return room;
   std::vector<std::pair<double, double>> around;  // (direction, partner radius or +inf for a wall)
+  std::vector<double> kinds;                      // the new partners' radii: +inf a wall's face, 0 a point
   for (std::size_t i = 0; i < n; ++i) {
     if (!e.active[i]) continue;
     around.clear();
     const Vec2 c{e.x[i], e.y[i]};
+    // what keeps its place beside i: its bonded partners and the fixed elements and static walls it touches
+    // (an unbonded free or a driven partner, a moving wall may leave and make room)
     for (std::size_t j = 0; j < n; ++j) {
-      if (j == i || !e.active[j] || m.law_index(e.material[i], e.material[j]) < 0) continue;
+      if (j == i || !e.active[j]) continue;
+      const std::int32_t li = m.law_index(e.material[i], e.material[j]);
+      if (li < 0) continue;
+      const bool bonded = bonds_at_start(m, m.laws[static_cast<std::size_t>(li)], i, static_cast<std::int64_t>(j));
+      if (!bonded && e.motion[j] != Motion::fixed) continue;
       const double dx = e.x[j] - c.x, dy = e.y[j] - c.y, dist = std::hypot(dx, dy);
-      if (dist > (e.radius[i] + e.radius[j]) * (1.0 + kTouch) || dist == 0.0) continue;
+      if (dist > (e.radius[i] + e.radius[j]) * (1.0 + (bonded ? kBondStretch : kTouch)) || dist == 0.0) continue;
       around.emplace_back(std::atan2(dy, dx), e.radius[j]);
     }
-    for (const Wall& w : m.walls) {
-      if (w.open || m.law_index(e.material[i], w.material) < 0) continue;
-      const Vec2 q = closest_point(w, c) - c;
-      const double dist = norm(q);
-      if (dist > e.radius[i] * (1.0 + kTouch) || dist == 0.0) continue;
-      around.emplace_back(std::atan2(q.y, q.x), std::numeric_limits<double>::infinity());
+    kinds.clear();
+    if (std::isfinite(new_radius)) kinds.push_back(new_radius);
+    const double own = std::isfinite(reach) ? reach : wall;
+    for (std::size_t w = 0; w < m.walls.size(); ++w) {
+      const Wall& wl = m.walls[w];
+      if (wl.open || m.law_index(e.material[i], wl.material) < 0) continue;
+      const Vec2 q = closest_point(wl, c) - c;
+      const double dist = norm(q), within = e.radius[i] + own + travel[w];
+      if (wl.drive < 0 && dist <= e.radius[i] * (1.0 + kTouch) && dist > 0.0)
+        around.emplace_back(std::atan2(q.y, q.x), wall);  // a static wall it touches
+      if (dist > within) continue;  // out of reach (G7)
+      // a segment's face (its direction fixed: drives translate) and its ends, a point wall: points
+      if (wl.kind == WallKind::segment) kinds.push_back(wall);
+      for (const Vec2 p : wl.kind == WallKind::segment ? std::vector<Vec2>{wl.a, wl.b} : std::vector<Vec2>{wl.a})
+        if (norm(p - c) <= within) kinds.push_back(0.0);
     }
+    if (kinds.empty()) continue;
     if (around.empty()) {
       room[i] = 1;
       continue;

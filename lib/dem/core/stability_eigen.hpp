@@ -37,14 +37,16 @@ struct StartNetwork {
 /// are ground, their springs acting on their partners alone (the bonded block of (G5)).
 StartNetwork start_network(const Model& m, const std::vector<std::uint8_t>* only = nullptr);
 
-/// (G6) Per element: whether a contact with a new partner can form beside the contacts it has at the
-/// start, i.e. whether some angular gap between consecutive start contacts holds the new one's direction
-/// with each start partner's direction turned by up to `kStartTurn` towards it. `new_radius`: the
-/// smallest radius of the elements that can become partners (+inf: none); `new_wall`: a wall can.
-/// Separations as the row-sum bound has them (overlaps ≤ 1 % of a radius): two elements of radii ρ_a,
-/// ρ_b around one of radius r at least acos(((r+ρ_a)² + (r+ρ_b)² − ((1−ε)(ρ_a+ρ_b))²) / (2(r+ρ_a)(r+ρ_b)))
-/// apart, an element and a segment wall acos((r − (1−ε)ρ)/(r+ρ)), two walls 0.
-std::vector<std::uint8_t> angular_room(const Model& m, double new_radius, bool new_wall);
+/// (G6) Per element: whether a contact with a new partner can form beside what keeps its place (its bonded
+/// partners, the fixed elements and static walls it touches), i.e. whether some angular gap between those
+/// holds the new one's direction with each of them turned by up to `kStartTurn` towards it. New partners:
+/// elements of radius `new_radius` (the smallest that can come; +inf: none), and the walls within reach
+/// (G7: a static wall within r + R, a moving one within r + R + its drive's fastest speed × the duration;
+/// every wall without numerics.guard_reach), a segment's face as a wall and its ends and point walls as
+/// points (radius 0). Separations as the row-sum bound has them (overlaps ≤ 1 % of a radius): two elements
+/// of radii ρ_a, ρ_b around one of radius r at least acos(((r+ρ_a)² + (r+ρ_b)² − ((1−ε)(ρ_a+ρ_b))²) /
+/// (2(r+ρ_a)(r+ρ_b))) apart, an element and a segment wall acos((r − (1−ε)ρ)/(r+ρ)), two walls 0.
+std::vector<std::uint8_t> angular_room(const Model& m, double new_radius);
 inline constexpr double kStartTurn = 0.0174532925199432958;  // 1° [rad]
 inline constexpr double kGuardOverlap = 0.01;                 // ε: the largest overlap the guard assumes, × a radius
 

@@ -221,7 +221,7 @@ struct RunLoop {
     if ((m.numerics.dt <= limit && !std::isnan(limit)) || m.numerics.allow_unstable) return false;
     const std::string why = moved >= 0 ? fmt::format("element {} moved more than numerics.guard_reach = {:.4g} m from where the "
                                                      "time-step guard last assumed it", sim.id_of(static_cast<std::size_t>(moved)), reach)
-                                       : std::string("the run restarts from a checkpoint");
+                                       : std::string(sim.steps() > 0 ? "the run restarts from a checkpoint" : "the run starts (after its preloads)");
     return stop("refused", fmt::format("stopped at t = {:.6g} s (step {}): {}; the guard of the current positions is "
                                        "{:.6g} s (before: {:.6g} s), below dt = {:.6g} s (docs/model.md G7)",
                                        sim.time(), sim.steps(), why, limit, before, m.numerics.dt));
@@ -327,7 +327,8 @@ void RunLoop::steps() {
   const bool forces = forces_every_step(c, !probes.empty(), static_cast<bool>(peak_quantity), opt);
   const std::int64_t first_step = sim.steps();
   keep_guard_positions();
-  const bool refused = first_step > 0 && outside_guard_reach(true);  // a restart: the guard of its positions
+  // with guard_reach, the guard of the positions the loop starts from (after preloads; a restart's)
+  const bool refused = std::isfinite(m.numerics.guard_reach) && outside_guard_reach(true);
   for (std::int64_t k = first_step; !refused && k < total_steps; ++k) {
     open_slit_when_due();
     sim.keep_contact_forces(forces || k + 1 == total_steps || interrupt_signal() != 0 ||

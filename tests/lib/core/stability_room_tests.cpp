@@ -31,18 +31,47 @@ dem::Model lattice(double face_kn, double disk_kn, double disk_mass, double disk
 }
 }  // namespace
 
-TEST_CASE("angular room: four square neighbours leave none for a wall or an equal disk", "[stability]") {
-  const dem::Model m = lattice(kn, kn, 1.0, inf);
-  // a wall or an equal disk: only the eight elements on the edge (the centre, 4, has neighbours every 90°)
-  const auto wall = dem::angular_room(m, inf, true);
-  const auto equal = dem::angular_room(m, r, false);
+/// The lattice with a wall (material "disk", which has a law with the blocks) moving at 10 m/s for 0.01 s
+/// (10 cm of travel: every element within reach of its face), numerics.guard_reach 1 mm.
+dem::Model with_moving_wall(dem::Wall w) {
+  dem::Model m = lattice(kn, kn, 1.0, inf);
+  m.numerics.duration = 0.01;
+  m.numerics.guard_reach = 0.001;
+  m.drives.push_back(dem::VelocityHistory{{0.0}, {dem::Vec2{0.0, -10.0}}});
+  w.drive = 0;
+  m.walls.push_back(w);
+  return m;
+}
+
+TEST_CASE("angular room: four square neighbours leave none for a wall's face or an equal disk", "[stability]") {
+  // a long wall above the lattice, its ends 1 m away (out of reach: 10 cm of travel + 1 mm + r)
+  const dem::Model walled = with_moving_wall(test::segment_wall({-1.0, 4 * r}, {1.0, 4 * r}, 1));
+  const auto wall = dem::angular_room(walled, inf);
+  const dem::Model bare = lattice(kn, kn, 1.0, inf);
+  const auto equal = dem::angular_room(bare, r);
   for (std::size_t i = 0; i < 9; ++i) {
     CAPTURE(i);
-    CHECK(wall[i] == (i != 4));
+    CHECK(wall[i] == (i != 4));  // the centre, 4, has neighbours every 90°
     CHECK(equal[i] == (i != 4));
   }
   // nothing can come: no room anywhere
-  for (auto x : dem::angular_room(m, inf, false)) CHECK(x == 0);
+  for (auto x : dem::angular_room(bare, inf)) CHECK(x == 0);
+  // the same wall static, 1 r above the top row: within reach of the top row only (r + 1 mm)
+  dem::Model still = walled;
+  still.walls[0].drive = -1;
+  still.walls[0].a.y = still.walls[0].b.y = 3.05 * r;
+  const auto top = dem::angular_room(still, inf);
+  for (std::size_t i = 0; i < 9; ++i) CHECK(top[i] == (i < 3));
+}
+
+TEST_CASE("angular room: a wall's end or a point wall within reach fits between two neighbours", "[stability]") {
+  // A point needs no angle beside a neighbour: an element with any gap has room for it, the centre too.
+  dem::Wall point = test::segment_wall({0.0, 0.08}, {0.0, 0.08}, 1);  // 8 cm above the centre, 10 cm of travel
+  point.kind = dem::WallKind::point;
+  for (const auto& x : dem::angular_room(with_moving_wall(point), inf)) CHECK(x == 1);
+  // a segment whose end comes within reach: its end is such a point
+  const auto end = dem::angular_room(with_moving_wall(test::segment_wall({0.0, 0.05}, {0.0, 1.0}, 1)), inf);
+  for (const auto& x : end) CHECK(x == 1);
 }
 
 TEST_CASE("angular room: a small disk fits the notch between two square neighbours exactly as the geometry says", "[stability]") {
@@ -60,8 +89,8 @@ TEST_CASE("angular room: a small disk fits the notch between two square neighbou
   const double rho_star = 0.5 * (lo + hi);
   REQUIRE(rho_star > (std::sqrt(2.0) - 1.0) * r);  // the allowances only widen the notch
   REQUIRE(rho_star < 0.5 * r);
-  CHECK(dem::angular_room(m, rho_star * (1 - 1e-6), false)[4] == 1);
-  CHECK(dem::angular_room(m, rho_star * (1 + 1e-6), false)[4] == 0);
+  CHECK(dem::angular_room(m, rho_star * (1 - 1e-6))[4] == 1);
+  CHECK(dem::angular_room(m, rho_star * (1 + 1e-6))[4] == 0);
 }
 
 TEST_CASE("block bound G5 with room G6: the new contacts sit on the edge elements only", "[stability]") {
@@ -102,4 +131,22 @@ TEST_CASE("block bound G5 with room G6: never above the limit once the disk touc
   CHECK(b.limit_block <= exact);  // each of the guard's bounds is safe on its own
   CHECK(b.limit_gershgorin <= exact);
   CHECK(guard >= 0.8 * exact);  // and not far below it (measured 0.90)
+}
+
+TEST_CASE("guard G4: a fixed element a bonded one can still reach counts on the bonded side", "[stability]") {
+  // A fixed stiff disk far above the lattice (no unbonded free element: G5 does not apply, G4 is the bound)
+  // and the same disk resting on the top middle element: the guard of the first must not exceed the exact
+  // limit of the second (a fixed partner was left out of G4 before this test).
+  constexpr double k_disk = 100 * kn;
+  auto with_fixed_disk = [&](double y) {
+    dem::Model m = lattice(kn, k_disk, 50.0, y);
+    m.elements.motion[9] = dem::Motion::fixed;
+    return m;
+  };
+  const double guard = dem::Simulation(with_fixed_disk(1.0)).stability_bound().limit;
+  const dem::StartNetwork net = dem::start_network(with_fixed_disk(4 * r));
+  REQUIRE(net.dofs == 27);
+  const double exact = dem::eigen_limit(net, dem::Integrator::k18, false, 0.0, 0.0, inf);
+  CHECK(guard <= exact);
+  CHECK(guard >= 0.8 * exact);  // and not far below it
 }
