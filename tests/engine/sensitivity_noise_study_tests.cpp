@@ -1,0 +1,87 @@
+// The run-to-run noise of a sensitivity study and its one-at-a-time sweeps, through whole studies and the
+// plan's bookkeeping (engine/sensitivity_noise.cpp, sensitivity_oat.cpp). Planted bugs that turn these red:
+// the B rows' noise taken from the wrong runs, the noise checks' reason stating a 105 % interval, the
+// ±tolerance check's verdict inverted, and the sweeps of the last output left out.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/sensitivity.hpp"
+#include "engine/sensitivity_study.hpp"
+#include "quiet_options.hpp"
+
+#include "../lib/test_support.hpp"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+
+TEST_CASE("the noise of each Sobol' row's mean comes from its own runs", "[sensitivity][noise]") {
+  // n = 2 rows, d = 1: runs A 0–1, B 2–3, AB_1 4–5 after the sobol_begin; run k has variance k + 1 over 2 replicates
+  ver::sens::Plan plan;
+  plan.sobol_begin = 3;
+  plan.runs.resize(9);
+  for (std::size_t k = 0; k < 6; ++k) {
+    plan.runs[3 + k].noise_var = {static_cast<double>(k + 1)};
+    plan.runs[3 + k].replicates = 2;
+  }
+  const auto m = ver::sens::mean_noise_of_runs(plan, 0, 2, 1);
+  REQUIRE(m);
+  CHECK(m->a == std::vector<double>{0.5, 1.0});
+  CHECK(m->b == std::vector<double>{1.5, 2.0});
+  CHECK(m->ab.at(0) == std::vector<double>{2.5, 3.0});
+}
+
+TEST_CASE("a noisy test function: the noise fraction's checks state their interval and verdict right", "[sensitivity][noise]") {
+  // linear 1·x1 + 2·x2 on [0, 1]²: V_f = 5/12; noise σ = 1: φ = 1 / (1 + 5/12) = 12/17
+  const fs::path root = test::fresh_dir("dem2d_unit_noise_study", "linear");
+  fs::create_directories(root);
+  const fs::path f = root / "sensitivity.toml";
+  std::ofstream(f) << "[sensitivity]\ntitle = \"noise\"\nfunction = \"linear\"\ncoefficients = [1.0, 2.0]\n"
+                      "noise_sd = 1.0\nnoise_seed = 1\nreplicates = 4\nmethods = [\"sobol\"]\n"
+                      "[[parameter]]\nlabel = \"x1\"\nlow = 0.0\nhigh = 1.0\n[[parameter]]\nlabel = \"x2\"\nlow = 0.0\nhigh = 1.0\n"
+                      "[sobol]\nsamples = 512\nbootstrap = 200\nconfidence = 0.9\nseed = 1\ntolerance = 0.1\n"
+                      "tolerance_reason = \"a unit test's margin\"\n";
+  const ver::StudyResult r = ver::run_sensitivity(f, test::quiet_options(root / "out"));
+  int interval = 0, within = 0;
+  for (const auto& c : r.json.at("checks")) {
+    const std::string q = c.at("quantity");
+    if (q.rfind("noise fraction of", 0) != 0) continue;
+    CHECK(c.at("reference").get<double>() == Approx(12.0 / 17.0).epsilon(1e-12));
+    if (q.find("within ±") != std::string::npos) {
+      ++within;
+      const double err = std::abs(c.at("dem").get<double>() - c.at("reference").get<double>());
+      CHECK(err < 0.05);  // 512 rows × 4 replicates: the estimate is close
+      CHECK(c.at("passed").get<bool>() == (err <= 0.1));
+    } else {
+      ++interval;
+      CHECK_THAT(c.at("tolerance_reason").get<std::string>(), Contains("the 90 % bootstrap interval"));
+    }
+  }
+  CHECK(interval == 1);
+  CHECK(within == 1);
+}
+
+TEST_CASE("one-at-a-time sweeps cover every output", "[sensitivity]") {
+  // the resting disk with a second probe: 1 + 1 × 3 runs, two outputs, a figure and rows for each
+  const fs::path root = test::fresh_dir("dem2d_unit_oat_outputs", "two");
+  fs::create_directories(root);
+  std::string text = test::slurp(test::source("cases/basic/rest_on_wall.toml"));
+  text += "\n[[probe]]\nname = \"height\"\nkind = \"value\"\nquantity = \"e0.y\"\n";
+  std::ofstream(root / "case.toml") << text;
+  std::ofstream(root / "sensitivity.toml")
+      << "[sensitivity]\ntitle = \"oat\"\ncase = \"case.toml\"\noutputs = [\"overlap\", \"height\"]\nmethods = [\"oat\"]\n"
+         "[[parameter]]\npath = \"contact.0.kn\"\nlabel = \"K\"\nlow = \"5e5 N/m\"\nhigh = \"4e6 N/m\"\n[oat]\npoints = 3\n";
+  const ver::StudyResult r = ver::run_sensitivity(root / "sensitivity.toml", test::quiet_options(root / "out"));
+  int figures = 0;
+  for (const auto& fig : r.json.at("figures"))
+    if (fig.value("id", "") == "oat_0" || fig.value("id", "") == "oat_1") ++figures;
+  CHECK(figures == 2);
+  const std::string csv = test::slurp(root / "out" / "indices.csv");
+  CHECK_THAT(csv, Contains("oat,overlap,\"K\",K,range"));
+  CHECK_THAT(csv, Contains("oat,height,\"K\",K,range"));
+}
