@@ -85,3 +85,23 @@ TEST_CASE("one-at-a-time sweeps cover every output", "[sensitivity]") {
   CHECK_THAT(csv, Contains("oat,overlap,\"K\",K,range"));
   CHECK_THAT(csv, Contains("oat,height,\"K\",K,range"));
 }
+
+TEST_CASE("a Sobol' study of a test function: its figure names the interval, and 100 resamples get the width checks", "[sensitivity][sobol_study]") {
+  // linear 1·x1 + 2·x2 without noise, confidence 0.9, exactly 100 bootstrap resamples (the least that
+  // compares the intervals' widths with the CLT)
+  const fs::path root = test::fresh_dir("dem2d_unit_sobol_study", "linear");
+  fs::create_directories(root);
+  const fs::path f = root / "sensitivity.toml";
+  std::ofstream(f) << "[sensitivity]\ntitle = \"sobol\"\nfunction = \"linear\"\ncoefficients = [1.0, 2.0]\nmethods = [\"sobol\"]\n"
+                      "[[parameter]]\nlabel = \"x1\"\nlow = 0.0\nhigh = 1.0\n[[parameter]]\nlabel = \"x2\"\nlow = 0.0\nhigh = 1.0\n"
+                      "[sobol]\nsamples = 256\nbootstrap = 100\nconfidence = 0.9\nseed = 1\n";
+  const ver::StudyResult r = ver::run_sensitivity(f, test::quiet_options(root / "out"));
+  bool labelled = false;
+  for (const auto& fig : r.json.at("figures"))
+    if (fig.value("id", "") == "sobol_0")
+      for (const auto& c : fig.at("curves")) labelled |= c.value("label", "") == "S, 90 % bootstrap interval";
+  CHECK(labelled);
+  int widths = 0;
+  for (const auto& c : r.json.at("checks")) widths += c.at("quantity").get<std::string>().rfind("width of the", 0) == 0 ? 1 : 0;
+  CHECK(widths >= 4);  // S and S_T of both inputs at least (Janon's too where its σ_∞ > 0)
+}
