@@ -94,8 +94,27 @@ TEST_CASE("a Sobol' study of a test function: its figure names the interval, and
   const fs::path f = root / "sensitivity.toml";
   std::ofstream(f) << "[sensitivity]\ntitle = \"sobol\"\nfunction = \"linear\"\ncoefficients = [1.0, 2.0]\nmethods = [\"sobol\"]\n"
                       "[[parameter]]\nlabel = \"x1\"\nlow = 0.0\nhigh = 1.0\n[[parameter]]\nlabel = \"x2\"\nlow = 0.0\nhigh = 1.0\n"
-                      "[sobol]\nsamples = 256\nbootstrap = 100\nconfidence = 0.9\nseed = 1\n";
+                      "[sobol]\nsamples = 256\nbootstrap = 100\nconfidence = 0.9\nseed = 1\ndelta = true\ndelta_bootstrap = 20\n";
   const ver::StudyResult r = ver::run_sensitivity(f, test::quiet_options(root / "out"));
+  // the tables: Sobol' over N = 256 rows and 256 (2 + 2) runs; δ over the 512 rows of A and B, the 90 %
+  // intervals, one row per parameter of the study's own output
+  std::string output;
+  bool sobol_title = false, delta_title = false;
+  int delta_rows = 0;
+  for (const auto& t : r.json.at("tables")) {
+    const std::string title = t.at("title");
+    if (title.rfind("Sobol' indices (Saltelli sampling", 0) == 0) {
+      sobol_title = title.find("N = 256, 1024 runs; 90 % bootstrap intervals") != std::string::npos;
+      output = t.at("rows").at(0).at(0);
+    }
+    if (title.rfind("Borgonovo", 0) == 0) {
+      delta_title = title.find("over the 512 rows of A and B") != std::string::npos && title.find("90 % intervals") != std::string::npos;
+      for (const auto& row : t.at("rows")) delta_rows += row.at(0) == output ? 1 : 0;
+    }
+  }
+  CHECK(sobol_title);
+  CHECK(delta_title);
+  CHECK(delta_rows == 2);
   bool labelled = false;
   for (const auto& fig : r.json.at("figures"))
     if (fig.value("id", "") == "sobol_0")
@@ -104,4 +123,13 @@ TEST_CASE("a Sobol' study of a test function: its figure names the interval, and
   int widths = 0;
   for (const auto& c : r.json.at("checks")) widths += c.at("quantity").get<std::string>().rfind("width of the", 0) == 0 ? 1 : 0;
   CHECK(widths >= 4);  // S and S_T of both inputs at least (Janon's too where its σ_∞ > 0)
+}
+
+TEST_CASE("Spearman's rank correlation of two rankings", "[sensitivity]") {
+  using ver::sens::spearman;
+  CHECK(spearman({1, 2, 3}, {1, 2, 3}) == 1.0);
+  CHECK(spearman({1, 2, 3}, {3, 2, 1}) == -1.0);           // 1 − 6·8/(3·8)
+  CHECK(spearman({1, 2, 3}, {1, 3, 2}) == Approx(0.5));    // 1 − 6·2/24
+  CHECK(spearman({1, 2, 3, 4}, {2, 1, 4, 3}) == Approx(0.6));  // 1 − 6·4/60
+  CHECK(ver::sens::descending_ranks({0.1, 0.7, 0.3}) == std::vector<double>{3, 1, 2});
 }

@@ -15,8 +15,6 @@
 
 namespace ver::sens {
 
-namespace {
-
 /// Ranks (1 = largest) of the values, ties by order.
 std::vector<double> descending_ranks(const std::vector<double>& v) {
   std::vector<std::size_t> order(v.size());
@@ -35,6 +33,8 @@ double spearman(const std::vector<double>& ra, const std::vector<double>& rb) {
   for (std::size_t i = 0; i < ra.size(); ++i) sum += (ra[i] - rb[i]) * (ra[i] - rb[i]);
   return 1.0 - 6.0 * sum / (d * (d * d - 1.0));
 }
+
+namespace {
 
 /// The first m rows of each of A, B, AB_i (and their noise) of a design of n rows.
 DesignOutputs prefix(const DesignOutputs& y, std::size_t m) {

@@ -176,6 +176,9 @@ std::optional<MeanNoise> mean_noise_of_runs(const Plan& plan, std::size_t o, std
 void analyse_morris(const Plan& plan, const ExactIndices& exact, Analysis& an);
 void analyse_sobol(const Plan& plan, const ExactIndices& exact, Analysis& an);
 void analyse_delta(const Plan& plan, Analysis& an);  // sensitivity_sobol_delta.cpp
+/// Ranks (1 = largest) of the values, ties by order; Spearman's ρ of two rankings without ties (sensitivity_sobol_subsets.cpp).
+std::vector<double> descending_ranks(const std::vector<double>& v);
+double spearman(const std::vector<double>& ra, const std::vector<double>& rb);
 
 struct DesignOutputs;
 /// Convergence against sample size for a study of a case (sensitivity_sobol_subsets.cpp): the indices on
