@@ -47,3 +47,33 @@ TEST_CASE("A series figure draws each listed variant from its own run - the last
   CHECK(ends[0]["y"] == std::vector<double>{1.0, 2.0});
   CHECK(ends[1]["y"] == std::vector<double>{3.0, 4.0});
 }
+
+TEST_CASE("A series figure with a reference draws its curve once, and not where it plots DEM minus reference", "[figures]") {
+  // free fall from rest, g = −9.81: the reference v(t) = g t at the run's own times (t = 0, 1)
+  const fs::path dir = fs::temp_directory_path() / "dem2d_unit_figure_reference" / std::to_string(::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string silo = std::string(DEM2D_SOURCE_DIR) + "/cases/silo/static_ordered.toml";
+  const std::string figure = "x = \"t\"\ny = \"e0.vy\"\nreference = \"free_fall.velocity\"\nx_arg = \"t\"\nargs = { v0 = 0.0, g = -9.81 }\n";
+  std::ofstream(dir / "study.toml") << "[study]\ntitle = \"t\"\ncase = \"" << silo << "\"\nkind = \"single\"\n"
+                                    << "[[check]]\nprobe = \"walls_fx\"\nvalue = 0.0\ntolerance = 1e-9\nreason = \"r\"\n"
+                                    << "[[figure]]\nid = \"with\"\n" << figure
+                                    << "[[figure]]\nid = \"minus\"\ny_minus_reference = true\n" << figure;
+  const ver::Study s = ver::read_study(dir / "study.toml");
+  REQUIRE(s.figures.size() == 2);
+  const fs::path run = dir / "out" / "runs" / "variant0";
+  fs::create_directories(run);
+  std::ofstream(run / "series.csv") << "t [s],e0.vy [m/s]\n0,0\n1,-9.5\n";
+  const ver::StudyOptions opt;
+  ver::StudyRun study{.s = s, .out = dir / "out", .opt = opt};
+  const nlohmann::json figures = ver::draw_figures(study);
+  REQUIRE(figures.size() == 2);
+  const nlohmann::json& with = figures[0]["curves"];
+  REQUIRE(with.size() == 2);
+  CHECK(with[1]["style"] == "reference");
+  CHECK(with[1]["x"] == std::vector<double>{0.0, 1.0});
+  CHECK(with[1]["y"] == std::vector<double>{0.0, -9.81});
+  const nlohmann::json& minus = figures[1]["curves"];
+  REQUIRE(minus.size() == 1);  // DEM − reference only
+  CHECK(minus[0]["y"][1].get<double>() == Approx(-9.5 + 9.81));
+}
