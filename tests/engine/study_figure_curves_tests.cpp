@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 #include <unistd.h>
 
 #include "engine/study_file.hpp"
@@ -76,4 +78,35 @@ TEST_CASE("A series figure with a reference draws its curve once, and not where 
   const nlohmann::json& minus = figures[1]["curves"];
   REQUIRE(minus.size() == 1);  // DEM − reference only
   CHECK(minus[0]["y"][1].get<double>() == Approx(-9.5 + 9.81));
+}
+
+TEST_CASE("A table over two variant arguments places each variant's probe at its row and column", "[figures]") {
+  // four variants on a 2 × 2 grid of (a, b) and one without b (left out); the probe is 10 a + b
+  const fs::path dir = fs::temp_directory_path() / "dem2d_unit_table_grid" / std::to_string(::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string silo = std::string(DEM2D_SOURCE_DIR) + "/cases/silo/static_ordered.toml";
+  std::ofstream f(dir / "study.toml");
+  f << "[study]\ntitle = \"t\"\ncase = \"" << silo << "\"\nkind = \"single\"\n";
+  for (const auto& [a, b] : std::vector<std::pair<int, int>>{{1, 1}, {1, 2}, {2, 1}, {2, 2}})
+    f << "[[variant]]\nlabel = \"v" << a << b << "\"\nset = []\nargs = { a = " << a << ", b = " << b << " }\n";
+  f << "[[variant]]\nlabel = \"lone\"\nset = []\nargs = { a = 3 }\n"
+    << "[[check]]\nprobe = \"walls_fx\"\nvalue = 0.0\ntolerance = 1e-9\nreason = \"r\"\n"
+    << "[[table]]\ntitle = \"grid\"\nprobe = \"walls_fx\"\nrow_arg = \"a\"\ncolumn_arg = \"b\"\nrow_label = \"a\"\ncolumn_label = \"b\"\n";
+  f.close();
+  const ver::Study s = ver::read_study(dir / "study.toml");
+  const ver::StudyOptions opt;
+  ver::StudyRun run{.s = s, .out = dir / "out", .opt = opt};
+  for (const auto& v : s.variants) {
+    ver::RunOut r;
+    r.probes["walls_fx"] = v.args.count("b") ? 10.0 * v.args.at("a") + v.args.at("b") : 99.0;
+    run.finest_runs.push_back(r);
+  }
+  ver::fill_tables(run);
+  REQUIRE(run.tables.size() == 1);
+  const nlohmann::json& t = run.tables[0];
+  CHECK(t["columns"] == std::vector<std::string>{"a \\ b", "b = 1", "b = 2"});
+  REQUIRE(t["rows"].size() == 2);
+  CHECK(t["rows"][0] == std::vector<std::string>{"a = 1", "11", "12"});
+  CHECK(t["rows"][1] == std::vector<std::string>{"a = 2", "21", "22"});
 }
