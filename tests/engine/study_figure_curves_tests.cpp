@@ -110,3 +110,16 @@ TEST_CASE("A table over two variant arguments places each variant's probe at its
   CHECK(t["rows"][0] == std::vector<std::string>{"a = 1", "11", "12"});
   CHECK(t["rows"][1] == std::vector<std::string>{"a = 2", "21", "22"});
 }
+
+TEST_CASE("The mode map's chart leaves the same margin above its last row as below its first", "[figures]") {
+  ver::Study s;
+  s.blocks = {{1, 3}, {2, 6}};
+  s.phis = {0.5, 0.6, 0.7};  // 6 rows, ticks at 0 … 5
+  const nlohmann::json chart = ver::mode_chart(s, {});
+  const auto& ticks = chart.at("yticks");
+  REQUIRE(ticks.size() == 6);
+  const double first = ticks.front().at(0), last = ticks.back().at(0);
+  const double lo = chart.at("yrange").at(0), hi = chart.at("yrange").at(1);
+  CHECK(first - lo == Approx(0.7));
+  CHECK(hi - last == Approx(first - lo));
+}

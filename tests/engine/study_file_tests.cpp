@@ -347,3 +347,20 @@ TEST_CASE("The noise and delta keys of a sensitivity file are read strictly", "[
   CHECK_THAT(sens_refusal(planted("bootstrap = 20", "bootstrap = 20\nconvergence = [16, 8]")),
              Contains("sobol.convergence: expected increasing sample sizes"));
 }
+
+TEST_CASE("A refinement study reads its label and the levels a check fits, and refuses a level it lacks", "[study_file]") {
+  // three levels, coarse to fine; the check fits the two finest (indices 1 and 2)
+  const std::string refinement = planted("kind = \"single\"", "kind = \"refinement\"") +
+                                 "\n[refinement]\nparameter = \"numerics.dt\"\nlabel = \"time step [s]\"\nvalues = [4e-5, 2e-5, 1e-5]\n";
+  auto with_fit = [&](const std::string& levels) {
+    std::string s = refinement;
+    const std::string at = "reason = \"K18 staggered is exact for a parabola\"\n";
+    return s.replace(s.find(at), at.size(), at + "fit_levels = " + levels + "\n");
+  };
+  const ver::Study s = ver::read_study(write("refinement", "study.toml", with_fit("[1, 2]")));
+  CHECK(s.parameter == "numerics.dt");
+  CHECK(s.parameter_label == "time step [s]");
+  REQUIRE(s.checks.size() == 1);
+  CHECK(s.checks[0].fit_levels == std::vector<std::size_t>{1, 2});
+  CHECK_THAT(refusal(with_fit("[0, 3]")), Contains("check.fit_levels: expected level indices from 0 to 2"));
+}

@@ -15,24 +15,13 @@
 
 namespace ver {
 
-namespace {
-
-/// One grid point: Sagaseta's mode (ref), Goodman & Bray's (gb), the DEM's (−1: the run failed).
-struct Point {
-  std::size_t block, phi, alpha;
-  int ref = 0, gb = 0, dem = -1;
-  bool near_boundary = false;
-  double slide = 0.0, rotation = 0.0;
-};
-
-/// The map as a coloured chart: rows = block and φ, x = α; ring = Sagaseta, dot = the DEM.
-nlohmann::json mode_chart(const Study& s, const std::vector<Point>& pts) {
+nlohmann::json mode_chart(const Study& s, const std::vector<ModePoint>& pts) {
   const char* names[] = {"stable", "slide", "topple", "slide + topple"};
   const char* colours[] = {"#2ca02c", "#1f77b4", "#d62728", "#9467bd"};
   nlohmann::json curves = nlohmann::json::array(), yticks = nlohmann::json::array();
   std::vector<std::vector<double>> rx(4), ry(4), dx(4), dy(4);
   std::vector<double> ex, ey, fx, fy;
-  for (const Point& p : pts) {
+  for (const ModePoint& p : pts) {
     const double row = static_cast<double>(p.block * s.phis.size() + p.phi);
     const double a = s.alphas[p.alpha] * 180.0 / std::numbers::pi;
     rx[p.ref].push_back(a);
@@ -71,8 +60,6 @@ nlohmann::json mode_chart(const Study& s, const std::vector<Point>& pts) {
                 {"yrange", {-0.7, rows_n - 0.3}}};
 }
 
-}  // namespace
-
 std::vector<std::string> mode_map_sets(const Study& s, std::size_t block, double phi, double alpha) {
   const auto [cols, rows] = s.blocks.at(block);
   std::vector<std::string> sets = s.set;
@@ -89,7 +76,7 @@ void run_mode_map(StudyRun& run) {
   const Study& s = run.s;
   const StudyOptions& opt = run.opt;
   // Sagaseta's dynamic classification (refs §2.3) against the DEM's motion, per grid point.
-  std::vector<Point> pts;
+  std::vector<ModePoint> pts;
   for (std::size_t b = 0; b < s.blocks.size(); ++b)
     for (std::size_t f = 0; f < s.phis.size(); ++f)
       for (std::size_t a = 0; a < s.alphas.size(); ++a) pts.push_back({b, f, a});
@@ -98,7 +85,7 @@ void run_mode_map(StudyRun& run) {
   };
   std::vector<Planned> plan(pts.size());
   parallel_for(pts.size(), opt.jobs, [&](std::size_t k) {
-    Point& p = pts[k];
+    ModePoint& p = pts[k];
     const auto [cols, rows] = s.blocks[p.block];
     const double bw = 2.0 * s.radius * cols, bh = 2.0 * s.radius * rows;
     const double phi = s.phis[p.phi], alpha = s.alphas[p.alpha];
@@ -113,7 +100,7 @@ void run_mode_map(StudyRun& run) {
   });
   const std::vector<RunOut> mode_runs = run.run_many(plan, opt.jobs);
   for (std::size_t k = 0; k < pts.size(); ++k) {
-    Point& p = pts[k];
+    ModePoint& p = pts[k];
     const RunOut& r = mode_runs[k];
     auto get = [&](const char* name) { return r.probes.count(name) ? r.probes.at(name) : std::nullopt; };
     if (r.status == "blow-up" || !get("pivot_x") || !get("rotation") || !get("pivot_x_start") || !get("rotation_start")) continue;
@@ -134,7 +121,7 @@ void run_mode_map(StudyRun& run) {
     for (std::size_t f = 0; f < s.phis.size(); ++f) {
       std::string ref_row, dem_row, gb_row, marks;
       int checked = 0, agree = 0, excluded = 0;
-      for (const Point& p : pts) {
+      for (const ModePoint& p : pts) {
         if (p.block != b || p.phi != f) continue;
         ref_row += fmt::format("{:>3}", code[p.ref]);
         gb_row += code[p.gb];

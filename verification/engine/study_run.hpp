@@ -97,6 +97,15 @@ void run_levels(StudyRun& run);      // kind single or refinement (study_levels.
 std::vector<Planned> member_plan(const StudyRun& run, const std::vector<Planned>& per_variant);
 std::vector<RunOut> fold_members(StudyRun& run, const std::vector<RunOut>& runs);
 void run_mode_map(StudyRun& run);    // study_mode_map.cpp
+/// One grid point of the mode map: Sagaseta's mode (ref), Goodman & Bray's (gb), the DEM's (−1: the run failed).
+struct ModePoint {
+  std::size_t block, phi, alpha;
+  int ref = 0, gb = 0, dem = -1;
+  bool near_boundary = false;
+  double slide = 0.0, rotation = 0.0;
+};
+/// The map as a coloured chart: rows = block and φ (equal margins above and below), x = α; ring = Sagaseta, dot = the DEM.
+nlohmann::json mode_chart(const Study& s, const std::vector<ModePoint>& pts);
 void run_stability(StudyRun& run);   // study_stability.cpp
 /// The declared figures (after the mode map's chart) and tables (appended to run.tables).
 nlohmann::json draw_figures(const StudyRun& run);
