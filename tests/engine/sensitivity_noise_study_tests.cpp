@@ -20,6 +20,22 @@
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 
+namespace {
+
+/// Runs a sensitivity study of the linear function 1·x1 + 2·x2 on [0, 1]² (Sobol' only): `sensitivity` goes
+/// into [sensitivity], `sobol` is the [sobol] table's body.
+ver::StudyResult linear_study(const std::string& folder, const std::string& sensitivity, const std::string& sobol) {
+  const fs::path root = test::fresh_dir("dem2d_unit_linear_study", folder);
+  fs::create_directories(root);
+  std::ofstream(root / "sensitivity.toml")
+      << "[sensitivity]\ntitle = \"" << folder << "\"\nfunction = \"linear\"\ncoefficients = [1.0, 2.0]\nmethods = [\"sobol\"]\n"
+      << sensitivity << "[[parameter]]\nlabel = \"x1\"\nlow = 0.0\nhigh = 1.0\n[[parameter]]\nlabel = \"x2\"\nlow = 0.0\nhigh = 1.0\n"
+      << "[sobol]\n" << sobol;
+  return ver::run_sensitivity(root / "sensitivity.toml", test::quiet_options(root / "out"));
+}
+
+}  // namespace
+
 TEST_CASE("the noise of each Sobol' row's mean comes from its own runs", "[sensitivity][noise]") {
   // n = 2 rows, d = 1: runs A 0–1, B 2–3, AB_1 4–5 after the sobol_begin; run k has variance k + 1 over 2 replicates
   ver::sens::Plan plan;
@@ -37,16 +53,10 @@ TEST_CASE("the noise of each Sobol' row's mean comes from its own runs", "[sensi
 }
 
 TEST_CASE("a noisy test function: the noise fraction's checks state their interval and verdict right", "[sensitivity][noise]") {
-  // linear 1·x1 + 2·x2 on [0, 1]²: V_f = 5/12; noise σ = 1: φ = 1 / (1 + 5/12) = 12/17
-  const fs::path root = test::fresh_dir("dem2d_unit_noise_study", "linear");
-  fs::create_directories(root);
-  const fs::path f = root / "sensitivity.toml";
-  std::ofstream(f) << "[sensitivity]\ntitle = \"noise\"\nfunction = \"linear\"\ncoefficients = [1.0, 2.0]\n"
-                      "noise_sd = 1.0\nnoise_seed = 1\nreplicates = 4\nmethods = [\"sobol\"]\n"
-                      "[[parameter]]\nlabel = \"x1\"\nlow = 0.0\nhigh = 1.0\n[[parameter]]\nlabel = \"x2\"\nlow = 0.0\nhigh = 1.0\n"
-                      "[sobol]\nsamples = 512\nbootstrap = 200\nconfidence = 0.9\nseed = 1\ntolerance = 0.1\n"
-                      "tolerance_reason = \"a unit test's margin\"\n";
-  const ver::StudyResult r = ver::run_sensitivity(f, test::quiet_options(root / "out"));
+  // V_f = 5/12; noise σ = 1: φ = 1 / (1 + 5/12) = 12/17
+  const ver::StudyResult r = linear_study("noise", "noise_sd = 1.0\nnoise_seed = 1\nreplicates = 4\n",
+                                          "samples = 512\nbootstrap = 200\nconfidence = 0.9\nseed = 1\ntolerance = 0.1\n"
+                                          "tolerance_reason = \"a unit test's margin\"\n");
   int interval = 0, within = 0;
   for (const auto& c : r.json.at("checks")) {
     const std::string q = c.at("quantity");
@@ -87,15 +97,10 @@ TEST_CASE("one-at-a-time sweeps cover every output", "[sensitivity]") {
 }
 
 TEST_CASE("a Sobol' study of a test function: its figure names the interval, and 100 resamples get the width checks", "[sensitivity][sobol_study]") {
-  // linear 1·x1 + 2·x2 without noise, confidence 0.9, exactly 100 bootstrap resamples (the least that
+  // without noise, confidence 0.9, exactly 100 bootstrap resamples (the least that
   // compares the intervals' widths with the CLT)
-  const fs::path root = test::fresh_dir("dem2d_unit_sobol_study", "linear");
-  fs::create_directories(root);
-  const fs::path f = root / "sensitivity.toml";
-  std::ofstream(f) << "[sensitivity]\ntitle = \"sobol\"\nfunction = \"linear\"\ncoefficients = [1.0, 2.0]\nmethods = [\"sobol\"]\n"
-                      "[[parameter]]\nlabel = \"x1\"\nlow = 0.0\nhigh = 1.0\n[[parameter]]\nlabel = \"x2\"\nlow = 0.0\nhigh = 1.0\n"
-                      "[sobol]\nsamples = 256\nbootstrap = 100\nconfidence = 0.9\nseed = 1\ndelta = true\ndelta_bootstrap = 20\n";
-  const ver::StudyResult r = ver::run_sensitivity(f, test::quiet_options(root / "out"));
+  const ver::StudyResult r =
+      linear_study("sobol", "", "samples = 256\nbootstrap = 100\nconfidence = 0.9\nseed = 1\ndelta = true\ndelta_bootstrap = 20\n");
   // the tables: Sobol' over N = 256 rows and 256 (2 + 2) runs; δ over the 512 rows of A and B, the 90 %
   // intervals, one row per parameter of the study's own output
   std::string output;
