@@ -473,6 +473,11 @@ std::vector<Stats> material_stats(const Elements& e, std::size_t nm) {
   return st;
 }
 
+/// (G7) How far element i may move for the guard: a free one `reach`, a fixed one 0, a driven one any distance.
+double element_reach(const Elements& e, std::size_t i, double reach) {
+  return e.motion[i] == Motion::free ? reach : e.motion[i] == Motion::fixed ? 0.0 : inf;
+}
+
 /// (G7) Per class pair (a, b), row a·nm + b: how many class-b elements a free class-a element may touch.
 /// Without numerics.guard_reach every active one; with it R, those within reach of some free class-a
 /// element: gap ≤ R_i + R_j, a free element moving at most R, a fixed one 0, a driven one any distance.
@@ -489,7 +494,7 @@ std::vector<int> partner_counts(const Model& m, const std::vector<Stats>& st, st
   }
   assumptions += fmt::format("; element partners only within reach, each free element moving at most numerics.guard_reach = "
                              "{:.4g} m, a fixed one not at all (G7; the run evaluates the guard again past it)", reach);
-  auto own_reach = [&](std::size_t i) { return e.motion[i] == Motion::free ? reach : e.motion[i] == Motion::fixed ? 0.0 : inf; };
+  auto own_reach = [&](std::size_t i) { return element_reach(e, i, reach); };
   std::vector<std::uint8_t> near(e.size() * nm, 0);  // element j may touch a free element of class a
   std::vector<std::size_t> order;
   double r_max = 0.0;
@@ -594,7 +599,7 @@ std::vector<ClassRates> element_growth(const Model& m, const StartNetwork& net, 
   const std::size_t nm = m.materials.size();
   const Elements& e = m.elements;
   const double reach = m.numerics.guard_reach;
-  auto own_reach = [&](std::size_t i) { return e.motion[i] == Motion::free ? reach : e.motion[i] == Motion::fixed ? 0.0 : inf; };
+  auto own_reach = [&](std::size_t i) { return element_reach(e, i, reach); };
   std::vector<std::size_t> others;  // the partners that can still come: not bonded free elements
   for (std::size_t j = 0; j < e.size(); ++j)
     if (e.active[j] && !(e.motion[j] == Motion::free && net.bonded[j])) others.push_back(j);
@@ -628,9 +633,8 @@ std::vector<ClassRates> element_growth(const Model& m, const StartNetwork& net, 
 
 /// (G4) The new contacts' matrix has rows on both sides: to the unbonded classes' row sums `u` add the
 /// largest row of a bonded element (its wall contacts and its contacts with the partners it can reach).
-ClassRates with_bonded_growth(const Model& m, const StartNetwork& net, const std::vector<Stats>& st,
-                              const std::vector<BlockClass>& info, ClassRates u) {
-  for (const ClassRates& g : element_growth(m, net, st, info)) u.add(g.lam, g.c, g.hopf, g.lam_s, g.c_s, g.hopf_s);
+ClassRates with_bonded_growth(const std::vector<ClassRates>& grows, ClassRates u) {
+  for (const ClassRates& g : grows) u.add(g.lam, g.c, g.hopf, g.lam_s, g.c_s, g.hopf_s);
   return u;
 }
 
@@ -643,7 +647,7 @@ ClassRates with_bonded_growth(const Model& m, const StartNetwork& net, const std
 /// at most once and u touches at most z_u of them (‖Σ_c B_c‖² ≤ Σ_c ‖B_c‖² for blocks on disjoint
 /// rows). Unlike (G4)'s Weyl sum, the lattice's and the load disk's largest rates are not added.
 void apply_block_bound(const Model& m, const StartNetwork& net, const std::vector<Stats>& st,
-                       const std::vector<BlockClass>& info, StabilityBound& out) {
+                       const std::vector<BlockClass>& info, const std::vector<ClassRates>& grows, StabilityBound& out) {
   const std::size_t nm = m.materials.size();
   int free_unbonded = 0, bonded_count = 0;
   double limit_u = inf, limit_u_s = inf;
@@ -668,7 +672,6 @@ void apply_block_bound(const Model& m, const StartNetwork& net, const std::vecto
     coupling.lam += info[u].unbonded_free * z * b[0], coupling.c += info[u].unbonded_free * z * b[1];
     coupling.lam_s += info[u].unbonded_free * z * b[2], coupling.c_s += info[u].unbonded_free * z * b[3];
   }
-  const std::vector<ClassRates> grows = element_growth(m, net, st, info);
   for (const ClassRates& g : grows) grown.add(g.lam, g.c, g.hopf, g.lam_s, g.c_s, g.hopf_s);
   // (G6) the new contacts as a diagonal on the DOFs of the bonded elements with angular room for one; the
   // others keep only the extra terms (base friction)
@@ -702,6 +705,15 @@ void apply_block_bound(const Model& m, const StartNetwork& net, const std::vecto
       "the {} unbonded free elements a block of its own (its row sums): {:.6g} s; the contacts the bonded "
       "elements can still form on the {} of them with angular room for one (G6), a diagonal term",
       bonded.dofs, free_unbonded, block, with_room);
+}
+
+/// A bonded structure's two sharper bounds, (G4) and (G5), with the contacts its elements can still form
+/// (element_growth) computed once for both.
+void apply_bonded_bounds(const Model& m, const StartNetwork& net, const std::vector<Stats>& st,
+                         const std::vector<BlockClass>& info, const ClassRates& unbonded, StabilityBound& out) {
+  const std::vector<ClassRates> grows = element_growth(m, net, st, info);
+  apply_eigen_bound(m, net, with_bonded_growth(grows, unbonded), out);
+  apply_block_bound(m, net, st, info, grows, out);
 }
 
 /// The rates the extra terms (base friction, …) add to the free elements of one class.
@@ -873,8 +885,7 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
     }
   }
   out.limit_gershgorin = out.limit, out.limit_gershgorin_sticking = out.limit_sticking;
-  if (net.any_bond) apply_eigen_bound(m, net, with_bonded_growth(m, net, st, info, unbonded), out);
-  if (net.any_bond) apply_block_bound(m, net, st, info, out);
+  if (net.any_bond) apply_bonded_bounds(m, net, st, info, unbonded, out);
   return out;
 }
 
