@@ -14,7 +14,10 @@ for arg in "$@"; do
     *) echo "setup: unknown option $arg (known: --mpi, --bench)" >&2; exit 2 ;;
   esac
 done
-pkgs=(build-essential cmake libeigen3-dev libgsl-dev catch2 libboost-dev libtomlplusplus-dev
+pkgs=(build-essential cmake
+      # compiler cache: a second build tree and a rebuild reuse the objects (cmake/build_speed.cmake)
+      ccache
+      libeigen3-dev libgsl-dev catch2 libboost-dev libtomlplusplus-dev
       libcli11-dev nlohmann-json3-dev libfmt-dev gnuplot-nox
       # Markdown (READMEs, docs/) rendered on the report's page: cmark-gfm with GitHub's tables (reports/cited_docs.cpp)
       libcmark-gfm-dev libcmark-gfm-extensions-dev
