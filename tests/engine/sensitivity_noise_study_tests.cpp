@@ -24,11 +24,13 @@ namespace {
 
 /// Runs a sensitivity study of the linear function 1·x1 + 2·x2 on [0, 1]² (Sobol' only): `sensitivity` goes
 /// into [sensitivity], `sobol` is the [sobol] table's body.
-ver::StudyResult linear_study(const std::string& folder, const std::string& sensitivity, const std::string& sobol) {
+ver::StudyResult linear_study(const std::string& folder, const std::string& sensitivity, const std::string& sobol,
+                              const std::string& coefficients = "[1.0, 2.0]") {
   const fs::path root = test::fresh_dir("dem2d_unit_linear_study", folder);
   fs::create_directories(root);
   std::ofstream(root / "sensitivity.toml")
-      << "[sensitivity]\ntitle = \"" << folder << "\"\nfunction = \"linear\"\ncoefficients = [1.0, 2.0]\nmethods = [\"sobol\"]\n"
+      << "[sensitivity]\ntitle = \"" << folder << "\"\nfunction = \"linear\"\ncoefficients = " << coefficients
+      << "\nmethods = [\"sobol\"]\n"
       << sensitivity << "[[parameter]]\nlabel = \"x1\"\nlow = 0.0\nhigh = 1.0\n[[parameter]]\nlabel = \"x2\"\nlow = 0.0\nhigh = 1.0\n"
       << "[sobol]\n" << sobol;
   return ver::run_sensitivity(root / "sensitivity.toml", test::quiet_options(root / "out"));
@@ -137,4 +139,21 @@ TEST_CASE("Spearman's rank correlation of two rankings", "[sensitivity]") {
   CHECK(spearman({1, 2, 3}, {1, 3, 2}) == Approx(0.5));    // 1 − 6·2/24
   CHECK(spearman({1, 2, 3, 4}, {2, 1, 4, 3}) == Approx(0.6));  // 1 − 6·4/60
   CHECK(ver::sens::descending_ranks({0.1, 0.7, 0.3}) == std::vector<double>{3, 1, 2});
+}
+
+TEST_CASE("a sweep whose output variance overflows fails, its indices reported as not computable", "[sensitivity]") {
+  // f = 1.5e308 x1 + 1e-300 x2 on [0, 1]²: every output finite, its variance not (it overflows).
+  const ver::StudyResult r = linear_study("overflow", "", "samples = 64\nbootstrap = 20\nseed = 1\n", "[1.5e308, 1e-300]");
+  CHECK_FALSE(r.passed);
+  bool named = false;
+  for (const auto& c : r.json["checks"])
+    if (c["quantity"].get<std::string>().rfind("Sobol' indices of f computable", 0) == 0) {
+      named = true;
+      CHECK_FALSE(c["passed"].get<bool>());
+      CHECK_THAT(c["note"].get<std::string>(), Contains("6 of 6 indices not computable") && Contains("variance"));
+    }
+  CHECK(named);
+  // The same function scaled down by 1e300 has every index and passes that check (it is absent).
+  const ver::StudyResult ok = linear_study("overflow_scaled", "", "samples = 64\nbootstrap = 20\nseed = 1\n", "[1.5e8, 1e-8]");
+  for (const auto& c : ok.json["checks"]) CHECK(c["quantity"].get<std::string>().find("computable") == std::string::npos);
 }

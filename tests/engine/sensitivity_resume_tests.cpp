@@ -8,6 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <utility>
+
+#include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
 
@@ -148,4 +151,42 @@ TEST_CASE("replicates: each sample is the mean of its replicates, a replicate ma
   const fs::path one = sweep_file("sweep_rep_one", "replicates = [[\"physics.gravity=[0,-8]\"]]\n");
   CHECK_THROWS_WITH(ver::run_sensitivity(one, quiet(test::fresh_dir("dem2d_unit_sweep", "sweep_rep_one_out"))),
                     Contains("at least 2"));
+}
+
+TEST_CASE("a run that ends without a value of an output is a failed run, not a good run with a hole", "[sensitivity]") {
+  // The resting disk with a probe at t = 0.09 s and the duration tied to K (1e5 / K): the OAT points
+  // K = 5e5, 1.41e6, 4e6 N/m end at 0.2, 0.071, 0.025 s, so two of the seven runs end before the probe.
+  const auto sweep = [](const std::string& folder, const std::string& at, int max_failed) {
+    const fs::path f = sweep_file(folder, fmt::format("max_failed_runs = {}\n", max_failed),
+                                  "also = [{ path = \"numerics.duration\", scale = 1e5, exponent = -1.0 }]\n");
+    std::ofstream(f.parent_path().parent_path().parent_path() / "cases/basic/rest_on_wall.toml", std::ios::app)
+        << "\n[[probe]]\nname = \"late\"\nkind = \"value\"\nquantity = \"e0.y\"\nat = \"" << at << "\"\n";
+    std::string text = slurp(f);
+    text.replace(text.find("outputs = [\"overlap\"]"), 21, "outputs = [\"late\"]");
+    std::ofstream(f) << text;
+    const fs::path out = test::fresh_dir("dem2d_unit_sweep", folder + "_out");
+    const auto result = ver::run_sensitivity(f, quiet(out));
+    return std::make_pair(result, slurp(out / "runs.csv"));
+  };
+  const auto count_no_output = [](const nlohmann::json& result) {
+    for (const auto& c : result["checks"])
+      if (c["quantity"].get<std::string>().rfind("failed runs", 0) == 0) return c["dem"].get<int>();
+    return -1;
+  };
+  const auto [r, runs] = sweep("sweep_no_output", "0.09 s", 0);
+  CHECK_FALSE(r.passed);
+  CHECK(count_no_output(r.json) == 2);
+  std::size_t rows = 0;
+  for (std::size_t at = runs.find(",no-output,\"output 'late'"); at != std::string::npos;
+       at = runs.find(",no-output,\"output 'late'", at + 1))
+    ++rows;
+  CHECK(rows == 2);
+  // Allowed by max_failed_runs, the same sweep passes, still counting them.
+  const auto allowed = sweep("sweep_no_output_allowed", "0.09 s", 2).first;
+  CHECK(allowed.passed);
+  CHECK(count_no_output(allowed.json) == 2);
+  // No run reaches the probe: every run failed, the sweep fails (it used to pass with every index nan).
+  const auto none = sweep("sweep_no_output_none", "5 s", 0).first;
+  CHECK_FALSE(none.passed);
+  CHECK(count_no_output(none.json) == 7);
 }

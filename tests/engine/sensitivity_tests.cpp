@@ -260,6 +260,30 @@ TEST_CASE("Sobol estimators: rows with a missing output are dropped, and lengths
   CHECK_THROWS(sobol_indices({1, 2}, {1}, {{1, 2}}, 0));
 }
 
+TEST_CASE("Sobol estimators: an output whose variance overflows gives no index, not 0", "[sensitivity]") {
+  // Every value finite, near ±1.7e308: the sum behind the mean overflows to +inf, then to inf − inf = NaN, and
+  // the variance with it; the indices used to be 0 [0, 0] ("nothing matters").
+  const std::vector<double> fa = {1.7e308, -1.7e308, 1.6e308, -1.6e308}, fb = {1.7e308, -1.7e308, 1.5e308, -1.5e308};
+  const std::vector<std::vector<double>> fab = {{1.6e308, -1.6e308, 1.7e308, -1.7e308}, {1.5e308, -1.4e308, 1.2e308, -1.1e308}};
+  const SobolIndices s = sobol_indices(fa, fb, fab, 20);
+  CHECK(s.rows_used == 4);
+  for (std::size_t i = 0; i < 2; ++i) {
+    CHECK(std::isnan(s.first[i].estimate));
+    CHECK(std::isnan(s.total[i].estimate));
+    CHECK(std::isnan(s.first[i].low));
+    CHECK(std::isnan(s.total[i].high));
+  }
+  // The same outputs scaled to 1: finite indices (the estimators themselves are fine).
+  auto scaled = [](std::vector<double> v) { for (double& x : v) x /= 1e308; return v; };
+  const SobolIndices t = sobol_indices(scaled(fa), scaled(fb), {scaled(fab[0]), scaled(fab[1])}, 20);
+  CHECK(std::isfinite(t.first[0].estimate));
+  CHECK(std::isfinite(t.total[1].high));
+  // A constant output: every index 0, by definition (nothing varies), not NaN.
+  const SobolIndices c = sobol_indices({2, 2, 2}, {2, 2, 2}, {{2, 2, 2}}, 5);
+  CHECK(c.first[0].estimate == 0.0);
+  CHECK(c.total[0].estimate == 0.0);
+}
+
 TEST_CASE("Morris effects of a linear model are exact and sigma is zero", "[sensitivity]") {
   const std::vector<Parameter> ps = {par("a", 0.0, 1.0, false), par("b", -3.0, 5.0, false), par("c", 0.1, 0.2, false)};
   const TestFunction f{"linear", {2.0, -0.5, 10.0}};

@@ -6,7 +6,7 @@
 // total and optionally second-order indices (Saltelli sampling on an Owen-scrambled Sobol' sequence,
 // Saltelli 2010, Janon 2014, Jansen and Saltelli 2002 estimators, bootstrap intervals). Runs go in parallel through the DEM core with a run cache
 // in <out>/cache (resumable like `dem2d study`); failed runs (blow-up, refused by the time-step
-// guard) are recorded, not fatal. Writes runs.csv, indices.csv and result.json (RESULT_FORMAT.md).
+// guard, no value of an output) are recorded, not fatal. Writes runs.csv, indices.csv and result.json (RESULT_FORMAT.md).
 // The file format is documented in verification/README.md ("Sensitivity studies").
 #include <filesystem>
 

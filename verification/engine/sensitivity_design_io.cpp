@@ -2,7 +2,10 @@
 // analyse` reads the outputs of its runs computed anywhere (another code, a cluster). The design is
 // the study file's own (plan_runs: deterministic for the file), so analyse rebuilds it and matches
 // the outputs by run number.
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -56,11 +59,20 @@ void read_outputs_csv(const Sens& s, const fs::path& file, std::vector<Run>& run
   };
   std::string line;
   if (!std::getline(in, line)) fail(1, "empty: expected a header with run and the outputs");
+  if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark (spreadsheets write one)
   const std::vector<std::string> header = fields_of(line);
+  for (std::size_t c = 0; c < header.size(); ++c)
+    for (std::size_t e = c + 1; e < header.size(); ++e)
+      if (header[c] == header[e])
+        fail(1, fmt::format("{}: the header names this column twice (columns {} and {})", header[c], c + 1, e + 1));
   auto column = [&](const std::string& name) -> std::size_t {
     for (std::size_t c = 0; c < header.size(); ++c)
       if (header[c] == name) return c;
-    fail(1, fmt::format("no column \"{}\" (expected run and the study's outputs: {})", name, fmt::join(s.outputs, ", ")));
+    std::string near;  // "overlap [m]" for "overlap": the column is there, with something after its name
+    for (const std::string& h : header)
+      if (h.size() > name.size() && h.rfind(name, 0) == 0 && (h[name.size()] == ' ' || h[name.size()] == '['))
+        near = fmt::format(": column \"{}\" is there, name it exactly \"{}\" (no unit)", h, name);
+    fail(1, fmt::format("{}: no such column (expected run and the study's outputs: {}){}", name, fmt::join(s.outputs, ", "), near));
     return 0;
   };
   const std::size_t run_col = column("run");
@@ -75,7 +87,8 @@ void read_outputs_csv(const Sens& s, const fs::path& file, std::vector<Run>& run
   for (std::size_t n = 2; std::getline(in, line); ++n) {
     if (line.empty() || line == "\r") continue;
     const std::vector<std::string> f = fields_of(line);
-    if (f.size() < header.size()) fail(n, fmt::format("{} fields, the header has {}", f.size(), header.size()));
+    // Exactly the header's fields: more would be a decimal comma or a stray separator, read as other columns.
+    if (f.size() != header.size()) fail(n, fmt::format("{} fields, the header has {}", f.size(), header.size()));
     std::size_t k = 0;
     try {
       std::size_t used = 0;
@@ -90,18 +103,25 @@ void read_outputs_csv(const Sens& s, const fs::path& file, std::vector<Run>& run
     runs[k].status = "completed";
     runs[k].message.clear();
     for (std::size_t o = 0; o < out_col.size(); ++o) {
+      // One rule for a value that is not a finite number (empty, nan, NaN, inf, Infinity, nan(…), 1e400, which
+      // overflows): the run failed, and it is counted as failed (max_failed_runs), with the value in its message.
       const std::string& x = f[out_col[o]];
-      if (x.empty() || x == "nan" || x == "NaN") {
+      double y = std::nan("");
+      bool number = !x.empty() && !std::isspace(static_cast<unsigned char>(x.front()));
+      if (number) {
+        errno = 0;
+        char* end = nullptr;
+        y = std::strtod(x.c_str(), &end);
+        number = end == x.c_str() + x.size();
+        if (errno == ERANGE && std::abs(y) > 1.0) y = std::copysign(HUGE_VAL, y);  // overflow; underflow keeps its value
+      }
+      if (!number && !x.empty()) fail(n, fmt::format("{}: expected a number, got \"{}\"", s.outputs[o], x));
+      if (!std::isfinite(y)) {
         runs[k].status = "failed";
+        runs[k].message += fmt::format("{}{}: not a finite number (\"{}\")", runs[k].message.empty() ? "" : "; ", s.outputs[o], x);
         continue;
       }
-      try {
-        std::size_t used = 0;
-        runs[k].outputs[o] = std::stod(x, &used);
-        if (used != x.size()) throw std::invalid_argument(x);
-      } catch (const std::exception&) {
-        fail(n, fmt::format("{}: expected a number, got \"{}\"", s.outputs[o], x));
-      }
+      runs[k].outputs[o] = y;
     }
   }
 }

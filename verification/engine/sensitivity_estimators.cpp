@@ -13,6 +13,14 @@ struct Point {
   std::vector<double> first, total, first_janon;
 };
 
+/// An index as numerator / variance: 0 for an output that does not vary, NaN (not computable) when either
+/// overflowed or is not finite: outputs near ±1.7e308 give an infinite variance, and x / inf = 0 would
+/// read as "nothing matters".
+double index_ratio(double num, double var) {
+  if (!std::isfinite(num) || !std::isfinite(var)) return std::nan("");
+  return var > 0.0 ? num / var : 0.0;
+}
+
 /// The estimators over the rows `rows` (indices into the outputs, repeats allowed).
 Point estimate(const std::vector<double>& fa, const std::vector<double>& fb, const std::vector<std::vector<double>>& fab,
                const std::vector<std::size_t>& rows, const MeanNoise* nz) {
@@ -44,10 +52,10 @@ Point estimate(const std::vector<double>& fa, const std::vector<double>& fb, con
         y2 -= 0.5 * (nz->b[j] + nz->ab[i][j]);
       }
     }
-    p.first[i] = var > 0.0 ? s / n / var : 0.0;
-    p.total[i] = var > 0.0 ? t / (2.0 * n) / var : 0.0;
+    p.first[i] = index_ratio(s / n, var);
+    p.total[i] = index_ratio(t / (2.0 * n), var);
     const double m = ym / n, den = y2 / n - m * m;           // Janon et al. 2014 first order
-    p.first_janon[i] = den > 0.0 ? (yy / n - m * m) / den : 0.0;
+    p.first_janon[i] = index_ratio(yy / n - m * m, den);
   }
   return p;
 }
@@ -55,6 +63,8 @@ Point estimate(const std::vector<double>& fa, const std::vector<double>& fb, con
 }  // namespace
 
 double percentile(std::vector<double> v, double q) {
+  // NaN is not ordered (std::sort needs a strict weak order): a sample holding one has no percentile.
+  if (std::any_of(v.begin(), v.end(), [](double x) { return std::isnan(x); })) return std::nan("");
   std::sort(v.begin(), v.end());
   const double pos = q * static_cast<double>(v.size() - 1);
   const std::size_t k = static_cast<std::size_t>(std::floor(pos));

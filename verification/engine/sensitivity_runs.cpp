@@ -48,6 +48,13 @@ void Runner::set_outputs(Run& r, const std::map<std::string, std::optional<doubl
       throw std::runtime_error(fmt::format("{}: sensitivity.outputs: the case has no probe \"{}\"", s.file.string(), o));
     const auto it = probes.find(o);
     r.outputs.push_back(it != probes.end() && it->second && r.status != "blow-up" ? *it->second : std::nan(""));
+    // A run that ended without a value of an output (a probe time after the end of the run, a crossing
+    // that never came) is a failed run, counted by max_failed_runs, not a good run with a hole.
+    if (run_ok(r) && !std::isfinite(r.outputs.back())) {
+      r.status = "no-output";
+      r.message = fmt::format("output \"{}\": the run gave no value (null probe: a time after the end of the run, "
+                              "or an event that did not happen)", o);
+    }
   }
 }
 
@@ -141,7 +148,8 @@ void Runner::run_all_runs(std::vector<Run>& runs, int jobs) {
 }
 
 bool run_ok(const Run& r) {  // missing, failed: no output in the outputs file of `dem2d analyse`
-  return r.status != "refused" && r.status != "blow-up" && r.status != "non-finite" && r.status != "missing" && r.status != "failed";
+  return r.status != "refused" && r.status != "blow-up" && r.status != "non-finite" && r.status != "missing" && r.status != "failed" &&
+         r.status != "no-output";
 }
 
 namespace {
@@ -233,7 +241,7 @@ void report_runs(const RunTable& table, bool derived_dt, Analysis& an) {
   const Sens& s = an.s;
   const int failed = table.failed;
   if (failed > s.max_failed) an.passed = false;
-  an.checks.push_back({{"quantity", "failed runs (blow-up, refused by the guard)"}, {"reference", 0}, {"dem", failed},
+  an.checks.push_back({{"quantity", "failed runs (blow-up, refused by the guard, no output)"}, {"reference", 0}, {"dem", failed},
                        {"error", failed}, {"error_kind", "abs"}, {"tolerance", s.max_failed},
                        {"tolerance_reason", "the ranges are meant to stay inside the stable, accepted region (max_failed_runs)"},
                        {"observed_order", nullptr}, {"expected_order", nullptr}, {"order_band", nullptr},

@@ -29,6 +29,21 @@ DesignOutputs outputs_of_runs(const Plan& plan, std::size_t o, std::size_t n, st
   return y;
 }
 
+/// A failing check when an index of this output could not be computed: a non-finite variance (outputs near
+/// ±1.7e308 overflow it) or fewer than two complete rows. Without it such indices read as 0 or "—" and a
+/// sweep passed saying that nothing matters.
+void check_computable(const SobolIndices& si, const std::string& yname, const std::string& tsuffix, Analysis& an) {
+  std::size_t missing = 0;
+  for (const auto* v : {&si.first, &si.total, &si.first_janon})
+    for (const Interval& x : *v) missing += !std::isfinite(x.estimate);
+  if (missing == 0) return;
+  const std::string why = si.rows_used < 2 ? fmt::format("{} complete rows (at least 2 needed)", si.rows_used)
+                                           : fmt::format("the variance of the output is {} (overflow or not finite)", si.variance);
+  an.add_check(fmt::format("Sobol' indices of {} computable{}", yname, tsuffix), 0.0, static_cast<double>(missing),
+               static_cast<double>(missing), 0.0, "an index that cannot be computed is no answer", false,
+               fmt::format("{} of {} indices not computable: {}", missing, 3 * si.first.size(), why));
+}
+
 /// The table's rows and indices.csv's of one output's indices, each checked against its exact value
 /// where known (the bootstrap interval must contain it).
 void index_rows(const SobolIndices& si, const ExactIndices& exact_sobol, const std::string& yname, const std::string& tsuffix,
@@ -160,6 +175,7 @@ void analyse_transform(const Plan& plan, const ExactIndices& exact, Transform tr
     // (sensitivity_noise.hpp); of the output itself only (a transform's noise is not the output's).
     const std::optional<MeanNoise> nz = transform == Transform::none ? mean_noise_of_runs(plan, o, n, d) : std::nullopt;
     const SobolIndices si = sobol_indices(y.fa, y.fb, y.fab, s.resamples, s.confidence, 12345, nz ? &*nz : nullptr);
+    check_computable(si, yname, tsuffix, an);
     if (s.function && s.resamples >= 100 && !nz) check_interval_widths(si, transform, tsuffix, an);
     index_rows(si, exact_sobol, yname, tsuffix, rows, an);
     dummy_row(y, nz ? &*nz : nullptr, yname, tsuffix, rows, an);
