@@ -38,6 +38,13 @@ def test_wrong_unit_in_an_override(root):
     assert "time" in err.message
 
 
+def test_override_with_a_line_break(root):
+    # the value used to be cut at the line break, the rest ignored without a word
+    with pytest.raises(dem2d.CaseError) as e:
+        dem2d.load_case(root / "cases/impact/disk_disk.toml", sets={"numerics.dt": "2e-6\nnumerics.duration=1"})
+    assert "one line" in str(e.value) and "\\n" in str(e.value)
+
+
 def test_missing_file(scratch):
     with pytest.raises(dem2d.CaseError) as e:
         dem2d.load_case(scratch / "no_such_case.toml")

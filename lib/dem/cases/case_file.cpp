@@ -37,6 +37,12 @@ std::optional<std::size_t> index_below(const std::string& s, std::size_t size) {
 /// Applies `path=value` to the tree: value is parsed as a TOML value when it is one ("1e-6", "true",
 /// "[1, 2]", "\"12 kN/mm\""), otherwise taken as a string ("12 kN/mm").
 void apply_override(toml::table& root, const std::string& kv) {
+  // One line: "v = 1\nx = 2" would read as the value 1 and a second key, silently dropped.
+  if (const auto bad = kv.find_first_of("\n\r"); bad != std::string::npos) {
+    std::string shown;
+    for (char ch : kv) shown += ch == '\n' ? std::string("\\n") : ch == '\r' ? std::string("\\r") : std::string(1, ch);
+    throw CaseError(fmt::format("--set {}: expected key=value on one line, found a line break at character {}", shown, bad + 1));
+  }
   const auto eq = kv.find('=');
   if (eq == std::string::npos || eq == 0)
     throw CaseError(fmt::format("--set {}: expected key=value, e.g. --set numerics.dt=1e-6", kv));

@@ -218,6 +218,15 @@ TEST_CASE("case file: --set with a bad path names --set", "[case]") {
   CHECK_THAT(read_error(path, {"numerics.dt"}), StartsWith("--set numerics.dt: ") && Contains("key=value"));
 }
 
+TEST_CASE("case file: --set with a line break is refused, not cut at it", "[case]") {
+  // "numerics.dt=2e-6\nx = 1" used to read as dt = 2e-6 with the rest silently dropped.
+  const auto path = (test::case_dir() / "minimal.toml").string();
+  CHECK_THAT(read_error(path, {"numerics.dt=2e-6\nnumerics.duration=1"}),
+             StartsWith("--set numerics.dt=2e-6\\nnumerics.duration=1: ") && Contains("one line") && Contains("character 17"));
+  CHECK_THAT(read_error(path, {"contact.0.kn=12 kN/mm\r"}), Contains("one line") && Contains("character 22"));
+  CHECK_THAT(read_error(path, {"numerics.dt=\"2e-6\n\""}), Contains("one line"));
+}
+
 // An override's value keeps its origin ("--set key=value") for error messages: apply_override moves the
 // parsed node into the tree (toml++ keeps the source of a moved node, not of a copied one).
 TEST_CASE("case file: --set with a bad value names --set, the key and what was expected", "[case]") {
