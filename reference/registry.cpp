@@ -23,6 +23,7 @@
 #include "ref/pre_time_step.hpp"
 #include "ref/require.hpp"
 #include "ref/resting_overlap.hpp"
+#include "ref/rolling_disk.hpp"
 #include "ref/silo.hpp"
 #include "ref/silo_fill.hpp"
 #include "ref/spring_layer.hpp"
@@ -195,6 +196,14 @@ std::vector<Entry> contact_entries() {
        {"theta", "rad", "small rotation about the face centre"}},
       "N m"},
      [](const Args& a) { return spring_layer_moment(a("k"), a("a"), a("theta")); }},
+    {{"face.no_tension_moment",
+      "moment of N no-tension springs (k/N each, at the segment centres) on a face pressed by the approach delta and "
+      "turned by theta about its contact point; the centre's approach grows by (r - delta)(1 - cos theta)",
+      {{"k", "N/m", "total normal stiffness of the face"}, {"a", "m", "half-length of the face"},
+       {"N", "1", "segment count (integer)"}, {"delta", "m", "approach before the turn"}, {"r", "m", "element radius"},
+       {"theta", "rad", "rotation about the contact point, >= 0"}},
+      "N m"},
+     [](const Args& a) { return no_tension_face_moment(a("k"), a("a"), a.count("N"), a("delta"), a("r"), a("theta")); }},
     {{"face.rotation_wall_fx",
       "force along the wall of a bonded face turned rigidly by theta about its centre (refs §4.7): sum K_s (s_i (cos theta - 1) + r sin theta)",
       argument::face_rotation,
@@ -549,11 +558,61 @@ std::vector<Entry> disk_slope_entries() {
   };
 }
 
+/// The arguments of the rolling-disk solver (ref/rolling_disk.hpp).
+std::vector<SolverArgument> rolling_arguments() {
+  return {argument::mass, {"r", "m", "disk radius"}, argument::gravity, {"alpha", "rad", "slope angle, 0 for a flat wall"},
+          {"ks", "N/m", "shear spring K_s"}, {"eta_s", "N s/m", "shear dashpot eta_s"}, {"mu", "1", "Coulomb friction mu"},
+          {"kr", "N m/rad", "rolling spring k_r"}, {"cr", "N m s/rad", "rolling dashpot C_r"},
+          {"mu_r", "1", "rolling friction mu_r"}, {"v0", "m/s", "initial velocity down the slope, rolling without slip"},
+          argument::time};
+}
+
+RollingDisk rolling_disk_of(const Args& a) {
+  return {.m = a("m"), .r = a("r"), .g = a("g"), .alpha = a("alpha"), .ks = a("ks"), .eta_s = a("eta_s"), .mu = a("mu"),
+          .kr = a("kr"), .cr = a("cr"), .mu_r = a("mu_r"), .v0 = a("v0")};
+}
+
+/// A disk with rolling resistance on a wall: the elastic–plastic model in continuous time and the rigid
+/// limit's closed forms (ref/rolling_disk.hpp).
+std::vector<Entry> rolling_entries() {
+  const SolverArgument v0{"v0", "m/s", "initial rolling velocity"}, mu_r{"mu_r", "1", "rolling friction mu_r"};
+  return {
+    {{"rolling.position", "x(t) of a disk on a wall with an elastic-plastic rolling spring and dashpot (type C) and a "
+                          "Coulomb shear spring, continuous time by Boost.Odeint (ref/rolling_disk.hpp)",
+      rolling_arguments(), "m"},
+     [](const Args& a) { return rolling_disk(rolling_disk_of(a), a("t")).x; }},
+    {{"rolling.velocity", "v(t) of the same disk", rolling_arguments(), "m/s"},
+     [](const Args& a) { return rolling_disk(rolling_disk_of(a), a("t")).v; }},
+    {{"rolling.omega", "omega(t) of the same disk (counter-clockwise positive)", rolling_arguments(), "rad/s"},
+     [](const Args& a) { return rolling_disk(rolling_disk_of(a), a("t")).omega; }},
+    {{"rolling.moment", "the rolling moment M(t) on the same disk", rolling_arguments(), "N*m"},
+     [](const Args& a) { return rolling_disk(rolling_disk_of(a), a("t")).moment; }},
+    {{"rolling.spring_moment", "min(k_r theta, mu_r r e_n): a disk's rolling spring turned by theta about its contact point "
+                               "on a wall, e_n = k_n (delta + (r - delta)(1 - cos theta))",
+      {{"kr", "N m/rad", "rolling spring k_r"}, {"kn", "N/m", "normal spring K_n"}, mu_r, {"r", "m", "disk radius"},
+       {"delta", "m", "approach before the turn"}, {"theta", "rad", "rotation about the contact point, >= 0"}},
+      "N m"},
+     [](const Args& a) { return rolling_spring_moment(a("kr"), a("kn"), a("mu_r"), a("r"), a("delta"), a("theta")); }},
+    {{"rolling.rigid_stop_distance", "3 v0^2/(4 mu_r g): a rigid disk rolling to rest on a flat wall", {v0, mu_r, argument::gravity}, "m"},
+     [](const Args& a) { return rolling_stop_distance(a("v0"), a("mu_r"), a("g")); }},
+    {{"rolling.rigid_stop_time", "3 v0/(2 mu_r g): the time a rigid disk takes to roll to rest on a flat wall",
+      {v0, mu_r, argument::gravity}, "s"},
+     [](const Args& a) { return rolling_stop_time(a("v0"), a("mu_r"), a("g")); }},
+    {{"rolling.rigid_velocity", "max(0, v0 + (2/3) g (sin alpha - mu_r cos alpha) t): a rigid disk rolling down a slope alpha >= 0 from v0 >= 0",
+      {v0, {"alpha", "rad", "slope angle"}, mu_r, argument::gravity, argument::time}, "m/s"},
+     [](const Args& a) { return rolling_rigid_velocity(a("v0"), a("alpha"), a("mu_r"), a("g"), a("t")); }},
+    {{"rolling.rigid_slope_acceleration", "(2/3) g (sin alpha - mu_r cos alpha), 0 if tan alpha <= mu_r: a rigid disk on a slope",
+      {{"alpha", "rad", "slope angle"}, mu_r, argument::gravity}, "m/s^2"},
+     [](const Args& a) { return rolling_slope_acceleration(a("alpha"), a("mu_r"), a("g")); }},
+  };
+}
+
 /// Every solver, in a fixed order (the groups above, one after the other).
 const std::vector<Entry>& table() {
   static const std::vector<Entry> entries = [] {
     std::vector<Entry> all;
-    for (auto make : {contact_entries, block_entries, silo_and_beam_entries, silo_fill_entries, exact_entries, disk_slope_entries}) {
+    for (auto make : {contact_entries, block_entries, silo_and_beam_entries, silo_fill_entries, exact_entries, disk_slope_entries,
+                      rolling_entries}) {
       std::vector<Entry> group = make();
       all.insert(all.end(), std::make_move_iterator(group.begin()), std::make_move_iterator(group.end()));
     }

@@ -25,3 +25,17 @@ def test_contacts_of_a_disk_on_a_floor(root, exe, scratch):
 
 def test_no_contacts_unless_asked(root):
     assert dem2d.run(dem2d.load_case(root / "cases/impact/disk_disk.toml")).contacts is None
+
+
+def test_rolling_moment_of_a_disk_rolling_to_rest(root):
+    """Rolling resistance (docs/model.md §4) through the module: the moment at its cap μ_r r e_n while the
+    disk rolls, in contacts.csv's `mr` and in the series' e0.mr.floor; a case without it has mr = 0."""
+    case_file = root / "cases/basic/disk_rolling.toml"
+    r = dem2d.run(dem2d.load_case(case_file, sets={"output.contacts": True, "numerics.duration": "0.05 s"}))
+    last = r.contacts[r.contacts["step"] == r.steps].iloc[0]
+    m, g, radius = 0.8325220532012952, 9.80665, 0.01
+    cap = 0.1 * radius * m * g  # μ_r r e_n, e_n = m g at the equilibrium overlap
+    assert abs(last["mr [N*m]"] / cap - 1) < 1e-9
+    assert abs(r.series["e0.mr.floor [N*m]"].iloc[-1] / cap - 1) < 1e-9
+    flat = dem2d.run(dem2d.load_case(root / "cases/basic/rest_on_wall.toml", sets={"output.contacts": True}))
+    assert (flat.contacts["mr [N*m]"] == 0.0).all()

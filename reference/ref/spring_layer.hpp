@@ -7,6 +7,8 @@
 // segment centres Σ(aξᵢ)²/N = (a²/3)(1 − 1/N²)).
 // Accuracy: exact for the linear layer; a finite rotation changes it by O(θ²).
 
+#include <cmath>
+
 #include "ref/require.hpp"
 
 namespace ref {
@@ -16,6 +18,31 @@ inline double spring_layer_moment(double stiffness, double half_length, double r
   detail::require_positive(where, "stiffness", stiffness);
   detail::require_positive(where, "half_length", half_length);
   return stiffness * half_length * half_length * rotation / 3.0;
+}
+
+/// N discrete normal springs of k/N each at the segment centres aξ_i, ξ_i = (2i + 1 − N)/N (M13.1), on a face
+/// pressed into a wall by the approach δ and turned statically by θ about its contact point (the element's
+/// centre at r − δ from the wall): the centre's approach grows by (r − δ)(1 − cos θ) (the rigid turn), each
+/// segment's by a ξ_i θ (the linearised lever, M15.1), and a segment whose approach is negative carries
+/// nothing (no tension, M8). Returns the size of the restoring moment Σ (k/N) u_i a ξ_i over the loaded segments.
+/// Exact for the linearised face; before any segment opens it is k a² θ/3 (1 − 1/N²) plus the turn's O(θ²).
+inline double no_tension_face_moment(double stiffness, double half_length, int segments, double approach,
+                                     double radius, double rotation) {
+  constexpr const char* where = "ref::no_tension_face_moment";
+  detail::require_positive(where, "stiffness", stiffness);
+  detail::require_positive(where, "half_length", half_length);
+  detail::require_positive(where, "radius", radius);
+  detail::require_non_negative(where, "approach", approach);
+  detail::require_non_negative(where, "rotation", rotation);
+  if (segments < 1 || segments > 1000) detail::fail(where, "segments must be in [1, 1000]", segments);
+  const double centre = approach + (radius - approach) * (1.0 - std::cos(rotation));
+  double moment = 0.0;
+  for (int i = 0; i < segments; ++i) {
+    const double lever = half_length * (2.0 * i + 1.0 - segments) / segments;
+    const double u = centre + lever * rotation;
+    if (u > 0.0) moment += stiffness / segments * u * lever;
+  }
+  return moment;
 }
 
 }  // namespace ref

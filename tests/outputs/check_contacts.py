@@ -27,7 +27,7 @@ import sys
 import xml.etree.ElementTree as ET
 
 G = 9.80665
-HEADER = ["step", "t [s]", "i", "j", "wall", "law", "x [m]", "y [m]", "nx", "ny", "fn [N]", "fs [N]", "links", "segments"]
+HEADER = ["step", "t [s]", "i", "j", "wall", "law", "x [m]", "y [m]", "nx", "ny", "fn [N]", "fs [N]", "links", "segments", "mr [N*m]"]
 failures = []
 plant = float(sys.argv[sys.argv.index("--plant-fn-factor") + 1]) if "--plant-fn-factor" in sys.argv else 1.0
 

@@ -53,6 +53,7 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"free_fall.position", {"x0", "v0", "g", "t"}},
       {"free_fall.velocity", {"v0", "g", "t"}},
       {"face.bending_moment", {"k", "a", "theta"}},
+      {"face.no_tension_moment", {"k", "a", "N", "delta", "r", "theta"}},
       {"face.rotation_wall_fx", {"Kn", "Ks", "r", "N", "ends", "theta"}},
       {"face.rotation_wall_fy", {"Kn", "Ks", "r", "N", "ends", "theta"}},
       {"face.rotation_moment_wall_frame", {"Kn", "Ks", "r", "N", "ends", "theta"}},
@@ -100,6 +101,15 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"disk_slope.velocity", {"m", "kn", "s", "zeta", "alpha", "phi", "g", "t"}},
       {"disk_slope.spin_speed", {"m", "kn", "s", "zeta", "alpha", "phi", "g", "t"}},
       {"kiyama.rest_overlap", {"m", "g", "E", "nu", "r", "q", "c", "factor"}},
+      {"rolling.position", {"m", "r", "g", "alpha", "ks", "eta_s", "mu", "kr", "cr", "mu_r", "v0", "t"}},
+      {"rolling.velocity", {"m", "r", "g", "alpha", "ks", "eta_s", "mu", "kr", "cr", "mu_r", "v0", "t"}},
+      {"rolling.omega", {"m", "r", "g", "alpha", "ks", "eta_s", "mu", "kr", "cr", "mu_r", "v0", "t"}},
+      {"rolling.moment", {"m", "r", "g", "alpha", "ks", "eta_s", "mu", "kr", "cr", "mu_r", "v0", "t"}},
+      {"rolling.spring_moment", {"kr", "kn", "mu_r", "r", "delta", "theta"}},
+      {"rolling.rigid_stop_distance", {"v0", "mu_r", "g"}},
+      {"rolling.rigid_stop_time", {"v0", "mu_r", "g"}},
+      {"rolling.rigid_velocity", {"v0", "alpha", "mu_r", "g", "t"}},
+      {"rolling.rigid_slope_acceleration", {"alpha", "mu_r", "g"}},
   };
   const auto infos = ref::solvers();
   CHECK(infos.size() == expected.size());

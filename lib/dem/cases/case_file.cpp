@@ -181,6 +181,31 @@ struct Reader {
     if (!(v >= 0.0)) r.fail(key, fmt::format("must not be negative, got {}", v));
   }
 
+  /// rolling = { friction = 0.1, stiffness_factor = 2.25 | stiffness = "2e-3 N*m/rad", damping_ratio = 0.3 }:
+  /// the rolling resistance of a linear contact (docs/model.md §4, R1–R6). `stiffness` in N·m/rad is taken
+  /// as is, in N/rad (per unit thickness) times l.
+  RollingLaw read_rolling(const TableReader& t, double l) {
+    RollingLaw r;
+    r.enabled = true;
+    r.mu_r = t.number("friction");
+    non_negative(t, "friction", r.mu_r);
+    if (t.has("stiffness") == t.has("stiffness_factor"))
+      t.fail_here("give exactly one of stiffness (k_r, N*m/rad) or stiffness_factor (β of k_r = β k_n μ_r² R_r², R2)");
+    if (t.has("stiffness")) {
+      auto [kr, dim] = t.quantity_either("stiffness", dims::energy / dims::angle, dims::force / dims::angle);
+      r.kr = dim == dims::energy / dims::angle ? kr : kr * l;
+      positive(t, "stiffness", r.kr);
+    } else {
+      r.stiffness_factor = t.number("stiffness_factor");
+      positive(t, "stiffness_factor", r.stiffness_factor);
+      if (!(r.mu_r > 0.0)) t.fail("stiffness_factor", "k_r = β k_n μ_r² R_r² is 0 with friction = 0: give friction > 0 or a stiffness");
+    }
+    r.damping_ratio = t.number("damping_ratio", 0.0);
+    non_negative(t, "damping_ratio", r.damping_ratio);
+    t.finish();
+    return r;
+  }
+
   /// kn_from_elastic = { E = "750 kgf/cm^2", nu = 0.3, q = "0.068 kgf/cm", radius = "1 cm", c = 1.5,
   /// factor = 1 }: Kiyama's K_n per unit thickness [Pa] from the 2D elastic contact of two equal
   /// cylinders (K22.b, K23), times `factor` (Kiyama's walls: 2).
@@ -264,6 +289,7 @@ struct Reader {
       }
       non_negative(r, r.has("ks") ? "ks" : "ks_ratio", law.linear.ks);
       law.linear.mu = mu;
+      if (r.has("rolling")) law.rolling = read_rolling(TableReader(*r.table("rolling"), r.key_path("rolling"), file), l);
       law.linear.end_rule = r.choice("end_rule", {"elastic", "total"}, "elastic") == "elastic" ? EndRule::elastic : EndRule::total;
       if (!law.damping_from_ratio) {
         if (r.has("eta_s")) {
@@ -274,6 +300,7 @@ struct Reader {
         }
       }
     } else {
+      if (r.has("rolling")) r.fail("rolling", "rolling resistance is an option of the linear law (a PRE face resists rotation by its segments)");
       FaceLaw& f = law.face;
       f.positions = r.choice("positions", {"centres", "ends"}, "centres") == "centres" ? SegmentPositions::centres : SegmentPositions::ends;
       f.segments = static_cast<int>(r.integer("segments", 1, kMaxSegments, f.positions == SegmentPositions::ends ? 2 : 1));

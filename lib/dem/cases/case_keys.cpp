@@ -116,6 +116,12 @@ std::vector<TableSpec> small_tables() {
           need(q("magnitude", {d::velocity}, "|v_B|")),
           need(q("direction", {d::angle}, "the direction of v_B from +x")),
       }},
+      {"contact.rolling", "Rolling resistance of a linear contact: an elastic–plastic spring–dashpot moment (R1–R6).", {
+          need(num("friction", "μ_r: the moment is capped at μ_r R_r e_n (R4)")),
+          q("stiffness", {d::energy / d::angle, d::force / d::angle}, "k_r [N*m/rad, or N/rad per unit thickness]; or stiffness_factor"),
+          num("stiffness_factor", "β of k_r = β k_n μ_r² R_r² (R2; Ai et al.: 2.25); or stiffness"),
+          num("damping_ratio", "ζ_r of the rolling dashpot C_r = 2 ζ_r √(I_r k_r) (R5)", 0.0),
+      }},
       {"contact.kn_from_elastic", "Kiyama's K_n per unit thickness from 2D elastic contact (K22.b, K23), times l.", {
           need(q("E", {d::pressure}, "Young's modulus")),
           need(num("nu", "Poisson's ratio, 0 <= nu < 0.5")),
@@ -151,6 +157,7 @@ TableSpec contact_table() {
       sub("kn_from_elastic", SpecKind::table, "contact.kn_from_elastic", "linear: Kiyama's K_n from E, nu, q, radius (K23); or kn"),
       q("ks", {d::stiffness, d::pressure}, "shear stiffness K_s; or ks_ratio (default 0)"),
       num("ks_ratio", "K_s / K_n (K24); or ks"),
+      sub("rolling", SpecKind::table, "contact.rolling", "linear: rolling resistance (R1–R6), off if absent"),
       words("end_rule", {"elastic", "total"}, "linear: Kiyama's K8 (elastic) or no attractive total force", "elastic"),
       words("positions", {"centres", "ends"}, "face: segment positions, M13.1 or M13.2 (ends: 2 segments)", "centres"),
       whole("segments", "face: the segment count N (default 1; 2 with positions = \"ends\")", 1, 8),

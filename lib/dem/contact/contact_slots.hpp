@@ -8,6 +8,7 @@
 
 #include "dem/contact/face_contact.hpp"
 #include "dem/contact/linear_contact.hpp"
+#include "dem/contact/rolling_resistance.hpp"
 
 namespace dem {
 
@@ -18,6 +19,7 @@ struct LinearSlot {
   double eta_n = 0.0, eta_s = 0.0;  // dashpots of this pair [N·s/m]
   LinearContactHistory h;
   ContactForce f;              // forces of the last step (outputs)
+  RollingState rolling;        // rolling resistance (R1–R6), zero if the law has none
   double nx = 0.0, ny = 0.0;   // normal of the last step, from i towards j
 };
 
@@ -51,27 +53,37 @@ struct LinearPairSlots {
   std::vector<std::int32_t> law;  // index into Model::laws
   std::vector<LinearContactState> state;
   std::vector<LinearContactResultant> resultant;
+  /// Rolling resistance (R1–R6), a column of its own that exists only if some law of the model rolls
+  /// (`with_rolling`), so that a model without it keeps the 32-byte state alone; it moves with its slot, and
+  /// its moment `m` is the step's, like the resultants, for the slots whose law rolls.
+  bool with_rolling = false;
+  std::vector<RollingState> rolling;
 
   std::size_t size() const { return pair.size(); }
   std::size_t capacity() const { return pair.capacity(); }
   void reserve(std::size_t n) {
     pair.reserve(n), touching.reserve(n), law.reserve(n), state.reserve(n), resultant.reserve(n);
+    if (with_rolling) rolling.reserve(n);
   }
   void resize(std::size_t n) {
     pair.resize(n), touching.resize(n), law.resize(n), state.resize(n), resultant.resize(n);
+    rolling.resize(with_rolling ? n : 0);
   }
   void clear() { resize(0); }
   void move(std::size_t to, std::size_t from) {
     pair[to] = pair[from], touching[to] = touching[from], law[to] = law[from], state[to] = state[from];
+    if (with_rolling) rolling[to] = rolling[from];
   }
   /// A fresh slot (no contact) for the pair (i, j) with this law.
   void put_fresh(std::size_t k, std::uint32_t i, std::uint32_t j, std::int32_t l) {
     pair[k] = {i, j}, touching[k] = 0, law[k] = l, state[k] = {};
+    if (with_rolling) rolling[k] = {};
   }
   /// Ends a contact: the slot stays (it is a candidate pair) but forgets its history.
   void reset(std::size_t k) {
     touching[k] = 0;
     state[k] = {};
+    if (with_rolling) rolling[k] = {};
   }
 };
 

@@ -116,6 +116,23 @@ void Simulation::start_linear(std::int32_t law_index, double overlap, double du_
   }
 }
 
+void Simulation::start_rolling(const PairLaw& law, std::uint32_t i, std::uint32_t j, bool wall, double dtheta,
+                               RollingState& s) const {
+  const Elements& e = m_.elements;
+  const double r_j = wall ? 0.0 : e.radius[j];
+  const double r_r = rolling_radius(e.radius[i], r_j);  // (R1)
+  s = {};
+  s.kr = rolling_stiffness(law.rolling, law.linear.kn, r_r);  // (R2)
+  s.cr = rolling_dashpot(law.rolling,
+                         rolling_inertia(e.inertia[i], e.mass[i], e.radius[i], wall ? 0.0 : e.inertia[j],
+                                         wall ? 0.0 : e.mass[j], r_j),
+                         s.kr);  // (R5)
+  s.arm = law.rolling.mu_r * r_r;  // (R4)
+  // As the shear spring (start_linear): a contact that starts from its geometry takes the first increment,
+  // the virtual ω(0)Δt of a plain start, into the dashpot only; a static preload loads the spring.
+  if ((step_ == 0 || law.onset == Onset::overlap) && !preloading_) s.mk = s.kr * dtheta;
+}
+
 namespace {
 // One overlapping candidate's geometry (K3, K5), made one contact ahead of its law (below).
 struct PairGeometry {
@@ -183,11 +200,13 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
     const std::uint32_t i = g.i, j = g.j;
     LinearContactState& s = state[c];
     const std::int32_t law_k = law_of[c];
+    const PairLaw& law = laws[static_cast<std::size_t>(law_k)];
+    const bool rolls = law.rolling.enabled;
     if (!touching[c]) {
       touching[c] = 1;
       start_linear(law_k, g.overlap, g.du_n, g.du_s, e.mass[i], e.mass[j], s.eta_n, s.eta_s, s.h);
+      if (rolls) start_rolling(law, i, j, false, dphi[i] - dphi[j], linear_pairs_.rolling[c]);
     }
-    const PairLaw& law = laws[static_cast<std::size_t>(law_k)];
     const ContactForce f = linear_contact_force(law.linear, s.eta_n, s.eta_s, g.du_n, g.du_s, inv_dt, s.h);
     const double nx = g.nx, ny = g.ny;
     g = g_next;
@@ -195,6 +214,8 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
       linear_pairs_.reset(c);
       continue;
     }
+    // (R1–R6): the rolling moment on i, on j the opposite; Δθ_r = Δφ_i − Δφ_j
+    const double m_roll = rolls ? rolling_moment(dphi[i] - dphi[j], s.h.en, inv_dt, linear_pairs_.rolling[c]) : 0.0;
     // for outputs, if this step keeps them, and for gather_forces if an element is shared
     if (keep || (Shares && (shared[i] || shared[j]))) resultant[c] = {f.fn, f.fs, nx, ny};
     // (K15): force on i is −f_n n − f_s t, t = (−sin α, cos α); on j the opposite.
@@ -206,16 +227,19 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
       fy_e[j] -= fy;
       moment[i] -= radius[i] * f.fs;
       moment[j] -= radius[j] * f.fs;
+      if (rolls) moment[i] += m_roll, moment[j] -= m_roll;  // (R6)
     } else {
       if (!shared[i]) {
         fx_e[i] += fx;
         fy_e[i] += fy;
         moment[i] -= radius[i] * f.fs;
+        if (rolls) moment[i] += m_roll;
       }
       if (!shared[j]) {
         fx_e[j] -= fx;
         fy_e[j] -= fy;
         moment[j] -= radius[j] * f.fs;
+        if (rolls) moment[j] -= m_roll;
       }
     }
   }
@@ -240,11 +264,13 @@ void Simulation::sweep_linear_walls(double inv_dt, std::size_t b, std::size_t en
     const double ux = e.dx[i] - w.increment.x, uy = e.dy[i] - w.increment.y;
     const double du_n = ux * nx + uy * ny;  // (K5) with the wall as element j, r_j = 0
     const double du_s = -ux * ny + uy * nx + r * e.dphi[i];
+    const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
+    const bool rolls = law.rolling.enabled;
     if (!s.touching) {
       s.touching = 1;
       start_linear(s.law, r - dist, du_n, du_s, e.mass[i], 0.0, s.eta_n, s.eta_s, s.h);
+      if (rolls) start_rolling(law, i, s.j, true, e.dphi[i], s.rolling);
     }
-    const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
     const ContactForce f = linear_contact_force(law.linear, s.eta_n, s.eta_s, du_n, du_s, inv_dt, s.h);
     if (f.opened) {
       reset_slot(s);
@@ -253,10 +279,12 @@ void Simulation::sweep_linear_walls(double inv_dt, std::size_t b, std::size_t en
     s.f = f;  // sum_wall_forces adds it, and gather_forces if the element is shared
     s.nx = nx;
     s.ny = ny;
+    if (rolls) rolling_moment(e.dphi[i], s.h.en, inv_dt, s.rolling);  // (R1–R6): the wall does not turn, Δθ_r = Δφ_i
     if (!Shares || !shares_.shared[i]) {
       e.fx[i] += -f.fn * nx + f.fs * ny;
       e.fy[i] += -f.fn * ny - f.fs * nx;
       e.moment[i] -= r * f.fs;
+      if (rolls) e.moment[i] += s.rolling.m;  // (R6)
     }
   }
 }

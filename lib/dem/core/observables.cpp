@@ -36,11 +36,13 @@ Energies Simulation::energies() const {
     }
   };
   auto sum_slots = [&](std::size_t b, std::size_t end, Energies& en) {  // slots [b, end) of the lists in turn
-    auto lin = [&](std::uint8_t touching, std::int32_t law, const LinearContactHistory& h) {
+    auto lin = [&](std::uint8_t touching, std::int32_t law, const LinearContactHistory& h, const RollingState* ro) {
       if (!touching) return;
-      const LinearSpringDashpot& l = m_.laws[static_cast<std::size_t>(law)].linear;
+      const PairLaw& pl = m_.laws[static_cast<std::size_t>(law)];
+      const LinearSpringDashpot& l = pl.linear;
       if (l.kn > 0.0) en.elastic += 0.5 * h.en * h.en / l.kn;
       if (l.ks > 0.0) en.elastic += 0.5 * h.es * h.es / l.ks;
+      if (pl.rolling.enabled && ro->kr > 0.0) en.elastic += 0.5 * ro->mk * ro->mk / ro->kr;  // (R3): the rolling spring
     };
     auto face = [&](const FaceSlot& s) {
       if (!s.touching) return;
@@ -54,11 +56,11 @@ Energies Simulation::energies() const {
     };
     std::size_t at = 0;  // where the list starts in the sequence
     for (std::size_t k = std::max(b, at); k < std::min(end, at + n_lp); ++k)
-      lin(lp.touching[k - at], lp.law[k - at], lp.state[k - at].h);
+      lin(lp.touching[k - at], lp.law[k - at], lp.state[k - at].h, lp.with_rolling ? &lp.rolling[k - at] : nullptr);
     at += n_lp;
     for (std::size_t k = std::max(b, at); k < std::min(end, at + n_lw); ++k) {
       const LinearSlot& s = linear_walls_[k - at];
-      lin(s.touching, s.law, s.h);
+      lin(s.touching, s.law, s.h, &s.rolling);
     }
     at += n_lw;
     for (std::size_t k = std::max(b, at); k < std::min(end, at + n_fp); ++k) face(face_pairs_[k - at]);
@@ -104,6 +106,11 @@ void Simulation::require_contact_forces(const char* reader) const {
                                        reader, step_));
 }
 
+double Simulation::linear_pair_rolling_moment(std::size_t k) const {
+  const LinearPairSlots& lp = linear_pairs_;
+  return lp.with_rolling && m_.laws[static_cast<std::size_t>(lp.law[k])].rolling.enabled ? lp.rolling[k].m : 0.0;
+}
+
 std::vector<ContactView> Simulation::contacts() const {
   require_contact_forces("contacts");
   std::vector<ContactView> out;
@@ -111,12 +118,12 @@ std::vector<ContactView> Simulation::contacts() const {
   for (std::size_t k = 0; k < lp.size(); ++k) {
     if (!lp.touching[k]) continue;
     const LinearContactResultant& s = lp.resultant[k];
-    out.push_back({lp.pair[k].i, lp.pair[k].j, false, s.nx, s.ny, s.fn, s.fs, 1});
+    out.push_back({lp.pair[k].i, lp.pair[k].j, false, s.nx, s.ny, s.fn, s.fs, 1, linear_pair_rolling_moment(k)});
   }
   for (const auto& s : face_pairs_)
     if (s.touching) out.push_back({s.i, s.j, false, s.nx, s.ny, s.f.p, s.f.q, s.f.links});
   for (const auto& s : linear_walls_)
-    if (s.touching) out.push_back({s.i, s.j, true, s.nx, s.ny, s.f.fn, s.f.fs, 1});
+    if (s.touching) out.push_back({s.i, s.j, true, s.nx, s.ny, s.f.fn, s.f.fs, 1, s.rolling.m});
   for (const auto& s : face_walls_)
     if (s.touching) out.push_back({s.i, s.j, true, s.nx, s.ny, s.f.p, s.f.q, s.f.links});
   return out;
@@ -179,7 +186,7 @@ ContactView Simulation::contact(std::uint32_t i, std::uint32_t j, bool wall) con
     return (it != slots.end() && it->i == i && it->j == j && it->touching) ? &*it : nullptr;
   };
   if (wall) {
-    if (const auto* s = find(linear_walls_)) return {i, j, wall, s->nx, s->ny, s->f.fn, s->f.fs, 1};
+    if (const auto* s = find(linear_walls_)) return {i, j, wall, s->nx, s->ny, s->f.fn, s->f.fs, 1, s->rolling.m};
   } else {
     const std::vector<SlotPair>& p = linear_pairs_.pair;
     const auto it = std::lower_bound(p.begin(), p.end(), key(i, j),
@@ -188,7 +195,7 @@ ContactView Simulation::contact(std::uint32_t i, std::uint32_t j, bool wall) con
     if (it != p.end() && it->i == i && it->j == j && linear_pairs_.touching[k]) {
       require_contact_forces("contact");
       const LinearContactResultant& s = linear_pairs_.resultant[k];
-      return {i, j, wall, s.nx, s.ny, s.fn, s.fs, 1};
+      return {i, j, wall, s.nx, s.ny, s.fn, s.fs, 1, linear_pair_rolling_moment(k)};
     }
   }
   if (const auto* s = find(wall ? face_walls_ : face_pairs_))

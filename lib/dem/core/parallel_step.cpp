@@ -123,6 +123,10 @@ void Simulation::gather_forces(const std::uint32_t* items, std::size_t count, bo
   const std::uint32_t* const os = index_.other_start.data();
   const std::uint32_t* const oi = index_.other_items.data();
   const Vec2 g = m_.gravity;
+  const bool rolling = linear_pairs_.with_rolling;
+  const RollingState* const lr = linear_pairs_.rolling.data();
+  const std::int32_t* const lp_law = linear_pairs_.law.data();
+  const PairLaw* const laws = m_.laws.data();
   for (std::size_t c = 0; c < count; ++c) {
     const std::uint32_t k = items[c];
     double fx = from_weight ? mass[k] * g.x : fx_e[k];  // (K15): gravity, m g
@@ -144,6 +148,11 @@ void Simulation::gather_forces(const std::uint32_t* items, std::size_t count, bo
         fy += on ? sfy : -0.0;
       }
       mom -= on ? r * s.fs : 0.0;
+      if (rolling) {  // (R6): +m on i, −m on j, added after the shear's moment as the sweep does
+        const bool rolls = on && laws[static_cast<std::size_t>(lp_law[slot])].rolling.enabled;
+        if (ContactIndex::is_j(entry)) mom -= rolls ? lr[slot].m : 0.0;
+        else mom += rolls ? lr[slot].m : -0.0;
+      }
     }
     for (std::uint32_t n = os[k]; n < os[k + 1]; ++n) {
       const std::uint32_t entry = oi[n];
@@ -169,6 +178,7 @@ void Simulation::gather_forces(const std::uint32_t* items, std::size_t count, bo
           fx += on ? -s.f.fn * s.nx + s.f.fs * s.ny : -0.0;
           fy += on ? -s.f.fn * s.ny - s.f.fs * s.nx : -0.0;
           mom -= on ? r * s.f.fs : 0.0;
+          mom += on && laws[static_cast<std::size_t>(s.law)].rolling.enabled ? s.rolling.m : -0.0;  // (R6)
           break;
         }
         case SlotKind::face_wall: {

@@ -47,9 +47,12 @@ struct PairColumns {
   void move(std::size_t to, std::size_t from) { v.move(to, from); }
   void put(std::size_t to, const PairSeed& f) { v.put_fresh(to, f.i, f.j, f.law); }
   using Full = FullPairSlot;
-  Full load(std::size_t k) const { return {v.pair[k], v.touching[k], v.law[k], v.state[k]}; }
+  Full load(std::size_t k) const {
+    return {v.pair[k], v.touching[k], v.law[k], v.state[k], v.with_rolling ? v.rolling[k] : RollingState{}};
+  }
   void store(std::size_t k, const Full& s) {
     v.pair[k] = s.pair, v.touching[k] = s.touching, v.law[k] = s.law, v.state[k] = s.state;
+    if (v.with_rolling) v.rolling[k] = s.rolling;
   }
 };
 

@@ -106,12 +106,14 @@ void Simulation::reference_linear_pair(std::size_t k, double inv_dt) {
   const double ux = e.dx[i] - e.dx[j], uy = e.dy[i] - e.dy[j];
   const double du_n = ux * nx + uy * ny;                                                   // (K5.a)
   const double du_s = -ux * ny + uy * nx + e.radius[i] * e.dphi[i] + e.radius[j] * e.dphi[j];  // (K5.b)
+  const double dtheta_r = e.dphi[i] - e.dphi[j];  // (R1): the relative rotation increment
   LinearContactState& c = s.state[k];
+  const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law[k])];
   if (!s.touching[k]) {
     s.touching[k] = 1;
     start_linear(s.law[k], rs - dist, du_n, du_s, e.mass[i], e.mass[j], c.eta_n, c.eta_s, c.h);
+    if (law.rolling.enabled) start_rolling(law, i, j, false, dtheta_r, s.rolling[k]);  // (R2, R5)
   }
-  const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law[k])];
   const ContactForce f = linear_contact_force(law.linear, c.eta_n, c.eta_s, du_n, du_s, inv_dt, c.h);  // (K6–K14)
   if (f.opened) {  // (K8): the contact ends
     s.reset(k);
@@ -122,6 +124,11 @@ void Simulation::reference_linear_pair(std::size_t k, double inv_dt) {
   e.fx[i] += fx, e.fy[i] += fy, e.fx[j] -= fx, e.fy[j] -= fy;
   e.moment[i] -= e.radius[i] * f.fs;  // (K15.c)
   e.moment[j] -= e.radius[j] * f.fs;
+  if (law.rolling.enabled) {  // (R3–R6): the rolling moment, on i and the opposite on j
+    const double m_r = rolling_moment(dtheta_r, c.h.en, inv_dt, s.rolling[k]);
+    e.moment[i] += m_r;
+    e.moment[j] -= m_r;
+  }
 }
 
 void Simulation::reference_linear_wall(std::size_t k, double inv_dt) {
@@ -141,11 +148,12 @@ void Simulation::reference_linear_wall(std::size_t k, double inv_dt) {
   const double ux = e.dx[i] - w.increment.x, uy = e.dy[i] - w.increment.y;
   const double du_n = ux * nx + uy * ny;                      // (K5.a)
   const double du_s = -ux * ny + uy * nx + r * e.dphi[i];  // (K5.b), r_j = 0
+  const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
   if (!s.touching) {
     s.touching = 1;
     start_linear(s.law, r - dist, du_n, du_s, e.mass[i], 0.0, s.eta_n, s.eta_s, s.h);
+    if (law.rolling.enabled) start_rolling(law, i, s.j, true, e.dphi[i], s.rolling);  // (R1: Δθ_r = Δφ_i), R2, R5
   }
-  const PairLaw& law = m_.laws[static_cast<std::size_t>(s.law)];
   const ContactForce f = linear_contact_force(law.linear, s.eta_n, s.eta_s, du_n, du_s, inv_dt, s.h);  // (K6–K14)
   if (f.opened) {  // (K8)
     forget(s);
@@ -155,6 +163,7 @@ void Simulation::reference_linear_wall(std::size_t k, double inv_dt) {
   const double fx = -f.fn * nx + f.fs * ny, fy = -f.fn * ny - f.fs * nx;  // (K15.a, K15.b)
   e.fx[i] += fx, e.fy[i] += fy;
   e.moment[i] -= r * f.fs;  // (K15.c)
+  if (law.rolling.enabled) e.moment[i] += rolling_moment(e.dphi[i], s.h.en, inv_dt, s.rolling);  // (R3–R6)
   w.force.x -= fx, w.force.y -= fy;  // the reaction on the wall
 }
 

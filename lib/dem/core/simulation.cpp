@@ -39,6 +39,7 @@ Simulation::Simulation(Model model) : m_(std::move(model)) {
   for (Wall& wl : m_.walls)
     wl.increment = wl.drive >= 0 ? m_.drives[static_cast<std::size_t>(wl.drive)].at(0.0) * m_.numerics.dt
                                  : Vec2{};
+  for (const PairLaw& law : m_.laws) linear_pairs_.with_rolling = linear_pairs_.with_rolling || law.rolling.enabled;
   rebuild();
   if (!m_.preloads.empty()) apply_preloads();
 }

@@ -43,6 +43,7 @@ struct ContactView {
   double nx, ny;   // normal from i towards j
   double fn, fs;   // normal (compression positive) and shear force [N]
   int links;       // linked segments (1 for a linear contact)
+  double mr = 0.0; // rolling moment on i (R6) [N·m]; on j the opposite; 0 without rolling
 };
 
 /// The dashpots of a linear contact between masses m_i and m_j (m_j <= 0: a wall): explicit, or from
@@ -67,6 +68,7 @@ struct FullPairSlot {
   std::uint8_t touching = 0;
   std::int32_t law = -1;
   LinearContactState state;
+  RollingState rolling;  // if the slots have the rolling column
 };
 
 class Simulation {
@@ -311,6 +313,10 @@ class Simulation {
   // A linear contact forms: its dashpots and the history it starts from.
   void start_linear(std::int32_t law, double overlap, double du_n, double du_s, double mass_i, double mass_j,
                     double& eta_n, double& eta_s, LinearContactHistory& h) const;
+  // Its rolling constants and the moment it starts from (R1, R2, R5), if its law rolls; j: an element, or a
+  // wall if `wall`. dtheta: the step's relative rotation increment.
+  double linear_pair_rolling_moment(std::size_t k) const;  // slot k's rolling moment on i of the last step (R6)
+  void start_rolling(const PairLaw& law, std::uint32_t i, std::uint32_t j, bool wall, double dtheta, RollingState& s) const;
   // The reference step's contacts, one slot each: its law and its forces added to its elements at once.
   void reference_linear_pair(std::size_t k, double inv_dt);
   void reference_face_pair(std::size_t k, double inv_dt);

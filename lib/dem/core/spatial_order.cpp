@@ -125,6 +125,10 @@ void renumber_pair_slots(LinearPairSlots& slots, const std::vector<std::uint32_t
   permute(slots.law, order, l);
   permute(slots.state, order, st);
   permute(slots.resultant, order, re);
+  if (slots.with_rolling) {
+    std::vector<RollingState> ro;
+    permute(slots.rolling, order, ro);
+  }
 }
 
 template <class Slot>
@@ -213,6 +217,7 @@ std::vector<ContactView> contacts_in_id_order(const Simulation& sim) {
       std::swap(c.i, c.j);
       c.nx = -c.nx;
       c.ny = -c.ny;
+      c.mr = -c.mr;  // the moment on the new i (R6)
     }
   auto key = [&](const ContactView& c) {
     return std::tuple{c.wall, sim.id_of(c.i), c.wall ? c.j : sim.id_of(c.j)};

@@ -144,7 +144,7 @@ struct Stats {  // of the active elements of one material
   int count = 0, free_count = 0;
   double r_min = inf, r_max = 0.0, m_min = inf, m_max = 0.0, i_min = inf, vs2_max = 0.0;
   // the free ones (the degrees of freedom whose bound is computed)
-  double fr_min = inf, fr_max = 0.0, fm_min = inf, fm_max = 0.0, fi_min = inf, fvs2_max = 0.0;
+  double fr_min = inf, fr_max = 0.0, fm_min = inf, fm_max = 0.0, fi_min = inf, fi_max = 0.0, fvs2_max = 0.0;
   std::int64_t lightest = -1;
 };
 
@@ -373,6 +373,31 @@ std::string law_name(const Model& m, std::int32_t law) {
   return fmt::format("contact {}", law);
 }
 
+/// A rolling spring (R2) and dashpot (R5) on the relative rotation add the rank-one term k_r b bᵀ with
+/// b = (1/√I_i, −1/√I_j) over the two rotations: k_r/I_i to the diagonal block, k_r/√(I_i I_j) to the
+/// coupling (the sum, not the larger, as it shares the rotations with the shear term), counted in both the
+/// sliding and the sticking bound (the rolling limit, like the slider, caps it; the bound does not rely on
+/// that). k_r grows with R_r (the largest radii); C_r with I_r ≤ I_i + m_i r_i² (the largest); the Hopf ratio
+/// C_r/k_r = 2ζ_r √(I_r/k_r) is taken at the smallest I_r and the largest k_r.
+void add_rolling(const PairLaw& law, const Stats& self, const Stats* other, Kind& k) {
+  const bool wall = other == nullptr;
+  const double r_r = rolling_radius(self.fr_max, wall ? 0.0 : other->r_max);
+  const double kr = rolling_stiffness(law.rolling, law.linear.kn, r_r);
+  const double i_big = self.fi_max + self.fm_max * self.fr_max * self.fr_max;
+  const double i_small = rolling_inertia(self.fi_min, self.fm_min, self.fr_min, wall ? 0.0 : other->i_min,
+                                         wall ? 0.0 : other->m_min, wall ? 0.0 : other->r_min);
+  const double cr = rolling_dashpot(law.rolling, i_big, kr);
+  const double ii = self.fi_min, ij = wall ? 0.0 : other->i_min;
+  const double kb = kr / ii + (wall ? 0.0 : kr / std::sqrt(ii * ij));
+  const double cb = cr / ii + (wall ? 0.0 : cr / std::sqrt(ii * ij));
+  k.k.b += kb, k.k_stick.b += kb;
+  k.c.b += cb, k.c_stick.b += cb;
+  if (kr > 0.0) {
+    const double hopf = rolling_dashpot(law.rolling, i_small, kr) / kr;
+    k.hopf = std::min(k.hopf, hopf), k.hopf_stick = std::min(k.hopf_stick, hopf);
+  }
+}
+
 /// The weights of one contact of an element of class `self` with a partner of class `other` (nullptr
 /// for a wall) under `law`.
 Kind contact_kind(const Model& m, std::int32_t law_index, const Stats& self, const Stats* other) {
@@ -406,6 +431,7 @@ Kind contact_kind(const Model& m, std::int32_t law_index, const Stats& self, con
     k.k_stick = {k.k.w, ks * vsi + (wall ? 0.0 : std::max(kn / std::sqrt(mi * mj), ks * std::sqrt(vsi * vsj)))};
     k.c_stick = {k.c.w, es * vsi + (wall ? 0.0 : std::max(en / std::sqrt(mi * mj), es * std::sqrt(vsi * vsj)))};
     k.hopf_stick = std::min(hn, hs);
+    if (law.rolling.enabled) add_rolling(law, self, other, k);
     return k;
   }
   // face law: the constants depend on both radii and the reduced mass: take the largest of each
@@ -468,6 +494,7 @@ std::vector<Stats> material_stats(const Elements& e, std::size_t nm) {
     s.fm_min = std::min(s.fm_min, e.mass[i]);
     s.fm_max = std::max(s.fm_max, e.mass[i]);
     s.fi_min = std::min(s.fi_min, e.inertia[i]);
+    s.fi_max = std::max(s.fi_max, e.inertia[i]);
     s.fvs2_max = std::max(s.fvs2_max, vs2);
   }
   return st;
@@ -754,6 +781,8 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
       "worst directions on a 0.5 deg grid (each grid point taking the largest value within a quarter degree); "
       "block-Gershgorin bound, exact for one contact; shear springs of Coulomb contacts counted only in the sticking limit",
       100 * kOverlap);
+  if (std::any_of(m.laws.begin(), m.laws.end(), [](const PairLaw& l) { return l.kind == LawKind::linear && l.rolling.enabled; }))
+    out.assumptions += "; rolling springs and dashpots (R2, R5) on the rotations, in both limits (add_rolling)";
   bool first = true;
   const StartNetwork net = start_network_if_bonded(m);
   ClassRates unbonded;  // the Gershgorin rates of the classes with free elements not bonded at the start

@@ -86,6 +86,17 @@ void add_contact(const Model& m, const std::vector<int>& dof, const PairLaw& law
   const Dashpots d = linear_dashpots(law, e.mass[ui], j >= 0 ? e.mass[static_cast<std::size_t>(j)] : 0.0);
   keep(spring_between(e, dof, i, j, face, normal, law.linear.kn, d.eta_n), false);  // (K5.a, K6.a)
   keep(spring_between(e, dof, i, j, face, t, law.linear.ks, d.eta_s), true);        // (K5.b, K10.a)
+  if (law.rolling.enabled) {  // (R1–R5): a spring on the relative rotation φ_i − φ_j alone
+    const auto uj = static_cast<std::size_t>(j);
+    const double rj = j >= 0 ? e.radius[uj] : 0.0;
+    NetworkSpring s;
+    s.k = rolling_stiffness(law.rolling, law.linear.kn, rolling_radius(ri, rj));
+    s.eta = rolling_dashpot(law.rolling, rolling_inertia(e.inertia[ui], e.mass[ui], ri, j >= 0 ? e.inertia[uj] : 0.0,
+                                                         j >= 0 ? e.mass[uj] : 0.0, rj), s.k);
+    if (dof[ui] >= 0) s.dof_a = dof[ui], s.ba[2] = std::sqrt(e.inv_inertia[ui]);
+    if (j >= 0 && dof[uj] >= 0) s.dof_b = dof[uj], s.bb[2] = -std::sqrt(e.inv_inertia[uj]);
+    keep(s, false);
+  }
 }
 
 }  // namespace

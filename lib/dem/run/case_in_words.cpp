@@ -15,6 +15,13 @@ std::string law_in_words(const nlohmann::json& l) {
                      l["end_rule"] == "elastic" ? "opens when e_n < 0, K8" : "no attractive total force",
                      l["onset"].get<std::string>(),
                      l["onset"] == "increment" ? "the first increment goes into e_n, Cundall" : "e_n from the overlap");
+    if (l.contains("rolling")) {
+      const auto& r = l["rolling"];
+      s += fmt::format(", rolling resistance (R1-R6): moment capped at mu_r R_r e_n with mu_r = {:.6g}, ", r["friction"].get<double>());
+      if (r.contains("stiffness")) s += fmt::format("k_r = {:.6g} N*m/rad", r["stiffness"].get<double>());
+      else s += fmt::format("k_r = {:.6g} k_n mu_r^2 R_r^2 (R2)", r["stiffness_factor"].get<double>());
+      s += fmt::format(", rolling damping ratio {:.6g} (C_r = 2 zeta_r sqrt(I_r k_r), R5; none at the cap)", r["damping_ratio"].get<double>());
+    }
   } else {
     s += fmt::format(", {} segment(s) at the {} ({}), normal increment {}, tangential increment {}, onset {}",
                      l["segments"].get<int>(), l["positions"] == "centres" ? "segment centres" : "face ends",

@@ -18,9 +18,10 @@ constexpr char kMagic[] = "DEM2D-CHECKPOINT\n";
 
 // A new field in one of these types must be added to write_state / read_state below; these
 // assertions fail the build until it is (the sizes are those of the fields listed there).
-static_assert(sizeof(LinearSlot) == 88, "LinearSlot changed: add the new field to the checkpoint (checkpoint.cpp)");
+static_assert(sizeof(LinearSlot) == 88 + sizeof(RollingState), "LinearSlot changed: add the new field to the checkpoint (checkpoint.cpp)");
+static_assert(sizeof(RollingState) == 40, "RollingState changed: add the new field to the checkpoint (checkpoint.cpp)");
 static_assert(sizeof(LinearContactState) == 32 && sizeof(LinearContactResultant) == 32 && sizeof(SlotPair) == 8 &&
-                  sizeof(LinearPairSlots) == 5 * sizeof(std::vector<double>),
+                  sizeof(LinearPairSlots) == 6 * sizeof(std::vector<double>) + alignof(std::vector<double>),
               "LinearPairSlots changed: add the new field to the checkpoint (checkpoint.cpp)");
 static_assert(sizeof(SegmentState) == 32 && sizeof(FaceConstants) == 48 && sizeof(FaceForce) == 32 &&
                   sizeof(FaceHistory) == 24 + 32 * kMaxSegments &&
@@ -90,15 +91,24 @@ struct Reader {
   }
 };
 
+// version 6: every linear slot carries its rolling state (R1–R6), zero when its law does not roll
+void put_rolling(Writer& w, const RollingState& s) { w.put(s.mk), w.put(s.kr), w.put(s.cr), w.put(s.arm), w.put(s.m); }
+RollingState get_rolling(Reader& r) {
+  RollingState s;
+  s.mk = r.get<double>(), s.kr = r.get<double>(), s.cr = r.get<double>(), s.arm = r.get<double>(), s.m = r.get<double>();
+  return s;
+}
 void put_slot(Writer& w, const LinearSlot& s) {
   w.put(s.i), w.put(s.j), w.put(s.law), w.put(s.touching), w.put(s.eta_n), w.put(s.eta_s);
   w.put(s.h.en), w.put(s.h.es), w.put(s.f.fn), w.put(s.f.fs), w.put(s.f.opened), w.put(s.nx), w.put(s.ny);
+  put_rolling(w, s.rolling);
 }
 void get_slot(Reader& r, LinearSlot& s) {
   s.i = r.get<std::uint32_t>(), s.j = r.get<std::uint32_t>(), s.law = r.get<std::int32_t>();
   s.touching = r.get<std::uint8_t>(), s.eta_n = r.get<double>(), s.eta_s = r.get<double>();
   s.h.en = r.get<double>(), s.h.es = r.get<double>(), s.f.fn = r.get<double>(), s.f.fs = r.get<double>();
   s.f.opened = r.get_bool("linear wall slot opened"), s.nx = r.get<double>(), s.ny = r.get<double>();
+  s.rolling = get_rolling(r);
 }
 void put_slot(Writer& w, const FaceSlot& s) {
   w.put(s.i), w.put(s.j), w.put(s.law), w.put(s.touching);
@@ -129,6 +139,7 @@ void put_slots(Writer& w, const LinearPairSlots& v) {
     const LinearContactResultant f = v.touching[k] ? v.resultant[k] : LinearContactResultant{};  // else: stale
     w.put(v.pair[k].i), w.put(v.pair[k].j), w.put(v.law[k]), w.put(v.touching[k]), w.put(s.eta_n), w.put(s.eta_s);
     w.put(s.h.en), w.put(s.h.es), w.put(f.fn), w.put(f.fs), w.put(f.nx), w.put(f.ny);
+    put_rolling(w, v.with_rolling ? v.rolling[k] : RollingState{});
   }
 }
 void get_slots(Reader& r, LinearPairSlots& v) {
@@ -143,6 +154,8 @@ void get_slots(Reader& r, LinearPairSlots& v) {
     v.touching[k] = r.get<std::uint8_t>(), s.eta_n = r.get<double>(), s.eta_s = r.get<double>();
     s.h.en = r.get<double>(), s.h.es = r.get<double>(), f.fn = r.get<double>(), f.fs = r.get<double>();
     f.nx = r.get<double>(), f.ny = r.get<double>();
+    const RollingState ro = get_rolling(r);
+    if (v.with_rolling) v.rolling[k] = ro;  // a case without rolling drops it (only another case can differ)
   }
 }
 template <class Slot>
@@ -306,6 +319,17 @@ struct SimulationAccess {
     relaw(sim.linear_walls_, true, LawKind::linear);
     relaw(sim.face_pairs_, false, LawKind::face);
     relaw(sim.face_walls_, true, LawKind::face);
+    // A touching contact whose new law rolls but that did not roll in the checkpoint starts its rolling now,
+    // from a zero moment (R2, R5); one whose new law does not roll forgets it.
+    auto roll_start = [&](std::int32_t law, std::uint32_t i, std::uint32_t j, bool wall, std::uint8_t touching, RollingState& r) {
+      const PairLaw& l = m.laws[static_cast<std::size_t>(law)];
+      if (!l.rolling.enabled) r = {};
+      else if (touching && r.kr == 0.0 && r.arm == 0.0) sim.start_rolling(l, i, j, wall, 0.0, r);
+    };
+    LinearPairSlots& lp = sim.linear_pairs_;
+    if (lp.with_rolling)
+      for (std::size_t k = 0; k < lp.size(); ++k) roll_start(lp.law[k], lp.pair[k].i, lp.pair[k].j, false, lp.touching[k], lp.rolling[k]);
+    for (LinearSlot& s : sim.linear_walls_) roll_start(s.law, s.i, s.j, true, s.touching, s.rolling);
   }
 };
 

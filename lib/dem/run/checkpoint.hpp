@@ -23,7 +23,7 @@
 
 namespace dem {
 
-inline constexpr std::uint32_t kCheckpointVersion = 5;  // 2: the run loop's discharge state; 3: element ids (order);
+inline constexpr std::uint32_t kCheckpointVersion = 6;  // 6: rolling states (R1–R6); 2: the run loop's discharge state; 3: element ids (order);
                                                           // 4: linear pair slots without ContactForce::opened;
                                                           // 5: the base plate's displacement and travel
 

@@ -89,6 +89,14 @@ void check_candidates(const std::string& file, const std::vector<CandidatePair>&
   }
 }
 
+/// A rolling state (R1–R6): finite numbers, constants that are not negative, a spring within its limit's
+/// reach (|M_k| ≤ arm × any finite force cannot be checked without the force: only finiteness and signs).
+static void check_rolling(const std::string& file, const std::string& field, const RollingState& r) {
+  check_numbers(file, field + " rolling", {r.mk, r.kr, r.cr, r.arm, r.m});
+  if (r.kr < 0.0 || r.cr < 0.0 || r.arm < 0.0)
+    corrupt_checkpoint(file, field + " rolling", fmt::format("negative constant (k_r {}, C_r {}, μ_r R_r {})", r.kr, r.cr, r.arm));
+}
+
 void check_slots(const std::string& file, const LinearPairSlots& s, const Model& m, bool laws) {
   const std::size_t n = m.elements.size();
   for (std::size_t k = 0; k < s.size(); ++k) {
@@ -100,6 +108,7 @@ void check_slots(const std::string& file, const LinearPairSlots& s, const Model&
     const LinearContactState& c = s.state[k];
     const LinearContactResultant& f = s.resultant[k];
     check_numbers(file, field, {c.eta_n, c.eta_s, c.h.en, c.h.es, f.fn, f.fs, f.nx, f.ny});
+    if (s.with_rolling) check_rolling(file, field, s.rolling[k]);
   }
 }
 
@@ -111,6 +120,7 @@ void check_slots(const std::string& file, const std::vector<LinearSlot>& s, cons
     if (laws) check_law(file, field, s[k].law, m, LawKind::linear);
     check_flag(file, field + " touching", s[k].touching);
     check_numbers(file, field, {s[k].eta_n, s[k].eta_s, s[k].h.en, s[k].h.es, s[k].f.fn, s[k].f.fs, s[k].nx, s[k].ny});
+    check_rolling(file, field, s[k].rolling);
   }
 }
 

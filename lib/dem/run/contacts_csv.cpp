@@ -12,7 +12,7 @@
 namespace dem {
 
 std::string contacts_csv_header() {
-  return "step,t [s],i,j,wall,law,x [m],y [m],nx,ny,fn [N],fs [N],links,segments\n";
+  return "step,t [s],i,j,wall,law,x [m],y [m],nx,ny,fn [N],fs [N],links,segments,mr [N*m]\n";
 }
 
 std::string segment_letters(const Simulation::FaceSegments& f, bool reversed) {
@@ -44,10 +44,10 @@ std::string contacts_csv_rows(const Simulation& sim) {
       const double d = std::hypot(e.x[c.j] - ci.x, e.y[c.j] - ci.y);
       point = ci + n * (0.5 * (d + e.radius[c.i] - e.radius[c.j]));
     }
-    fmt::format_to(to, "{},{:.17g},{},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{},{}\n", sim.steps(),
+    fmt::format_to(to, "{},{:.17g},{},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{},{},{:.17g}\n", sim.steps(),
                    sim.time(), sim.id_of(c.i), c.wall ? std::int64_t{-1} : std::int64_t{sim.id_of(c.j)},
                    c.wall ? csv_field(walls[c.j].name) : std::string(), face.n > 0 ? "face" : "linear", point.x, point.y,
-                   c.nx, c.ny, c.fn, c.fs, c.links, segment_letters(face, !c.wall && c.i > c.j));
+                   c.nx, c.ny, c.fn, c.fs, c.links, segment_letters(face, !c.wall && c.i > c.j), c.mr);
   }
   return {out.data(), out.size()};
 }

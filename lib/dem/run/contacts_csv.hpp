@@ -1,7 +1,7 @@
 #pragma once
 // contacts.csv: every contact at chosen steps ([output] contacts, contacts_every; cases/README.md), one
 // row each, in the order of the VTK snapshots' contact lines (vtk_writer.hpp, contacts_in_id_order):
-//   step,t [s],i,j,wall,law,x [m],y [m],nx,ny,fn [N],fs [N],links,segments
+//   step,t [s],i,j,wall,law,x [m],y [m],nx,ny,fn [N],fs [N],links,segments,mr [N*m]
 // i: the element's id; j: the other element's id, or −1 for a wall contact, whose wall is then named in
 // `wall` (as [[wall]] names it; empty for two elements); law: linear (disks, K-law) or face (PRE, M-law);
 // x, y: the contact point — two disks: the middle of the overlap on the line of centres; two PREs: the
@@ -15,6 +15,7 @@
 //   L  linked, no bond (broken and re-formed, or never bonded: compression and friction only)
 //   o  not linked, bond intact (the segment's faces are apart, it never broke)
 //   x  not linked, bond broken (opened in tension, M8)
+// mr: the rolling moment on i (R6; on j the opposite), 0 for a contact whose law has no rolling resistance.
 #include <string>
 
 #include "dem/core/simulation.hpp"

@@ -86,7 +86,7 @@ QuantityFn element_quantity(const std::string& name, std::size_t u, const std::v
     }
     throw bad("unknown element field (x, y, phi, vx, vy, omega, fx, fy, moment, px(a,b), py(a,b), gap.<other>, fn.<other>, fs.<other>)");
   }
-  if (p.size() == 3 && (p[1] == "gap" || p[1] == "fn" || p[1] == "fs" || p[1] == "links" || p[1] == "mobilised")) {
+  if (p.size() == 3 && (p[1] == "gap" || p[1] == "fn" || p[1] == "fs" || p[1] == "mr" || p[1] == "links" || p[1] == "mobilised")) {
     long j = -1;
     try {
       j = element_ref(p[2], m);
@@ -115,13 +115,18 @@ QuantityFn element_quantity(const std::string& name, std::size_t u, const std::v
         const ContactView c = s.contact(s.index_of(static_cast<std::uint32_t>(u)), wall ? o : s.index_of(o), wall);
         return c.fn > 0.0 ? std::abs(c.fs) / c.fn : 0.0;
       };
+    if (p[1] == "mr")  // the rolling moment on element u (R6)
+      return [u, o, wall](const Simulation& s) {
+        return s.contact(s.index_of(static_cast<std::uint32_t>(u)), wall ? o : s.index_of(o), wall).mr *
+               (!wall && s.index_of(o) < s.index_of(static_cast<std::uint32_t>(u)) ? -1.0 : 1.0);
+      };
     const bool normal = p[1] == "fn";
     return [u, o, wall, normal](const Simulation& s) {
       const ContactView c = s.contact(s.index_of(static_cast<std::uint32_t>(u)), wall ? o : s.index_of(o), wall);
       return normal ? c.fn : c.fs;
     };
   }
-  throw bad("expected e<i>.<field> or e<i>.gap|fn|fs|links|mobilised.<other>");
+  throw bad("expected e<i>.<field> or e<i>.gap|fn|fs|mr|links|mobilised.<other>");
 }
 
 /// Parses "f(a,b,...)"'s comma-separated numbers (exactly `count` of them); throws std::invalid_argument.
@@ -180,7 +185,7 @@ double mean_increment(const Simulation& s) {
 bool reads_contact_forces(const std::string& name) {
   const auto p = split(name, '.');
   return name == "unbalanced_force_ratio" ||
-         (p.size() == 3 && (p[1] == "fn" || p[1] == "fs" || p[1] == "links" || p[1] == "mobilised"));
+         (p.size() == 3 && (p[1] == "fn" || p[1] == "fs" || p[1] == "mr" || p[1] == "links" || p[1] == "mobilised"));
 }
 
 double unbalanced_force_ratio(const Simulation& s) {
@@ -338,6 +343,7 @@ std::string quantity_unit(const std::string& name) {
   if (p.size() == 3) {  // e<i>.gap|fn|fs|links.<other>
     if (p[1] == "gap") return "m";
     if (p[1] == "fn" || p[1] == "fs") return "N";
+    if (p[1] == "mr") return "N*m";
     if (p[1] == "links" || p[1] == "mobilised") return "1";
   }
   const std::string f = p.size() >= 2 ? name.substr(name.find('.') + 1) : std::string();

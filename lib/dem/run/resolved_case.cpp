@@ -60,6 +60,14 @@ nlohmann::json law_json(const Model& m, const PairLaw& law) {
     j["ks"] = law.linear.ks;
     j["friction"] = law.linear.mu;
     j["end_rule"] = name_of(law.linear.end_rule);
+    if (law.rolling.enabled) {  // (R1–R6); absent when off, so cases without it keep their resolved form
+      nlohmann::json r;
+      r["friction"] = law.rolling.mu_r;
+      if (law.rolling.kr > 0.0) r["stiffness"] = law.rolling.kr;  // [N·m/rad], × thickness already applied
+      else r["stiffness_factor"] = law.rolling.stiffness_factor;
+      r["damping_ratio"] = law.rolling.damping_ratio;
+      j["rolling"] = r;
+    }
   } else {
     const FaceLaw& f = law.face;
     j["segments"] = f.segments;

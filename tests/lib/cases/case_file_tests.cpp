@@ -328,3 +328,50 @@ TEST_CASE("case file: a radius range of exactly two values - a peak drop strictl
              Contains("element 1 has no mass"));
   CHECK_NOTHROW(dem::read_case(variant("massive_last.toml", "title = \"minimal\"", "title = \"minimal\"", glass + "mass = \"0.1 kg\"\n").path));
 }
+
+TEST_CASE("case file: a contact's rolling table (R1–R6) is read strictly", "[case][rolling]") {
+  struct Bad {
+    const char* name;
+    const char* rolling;
+    const char* key;
+    const char* expected;
+  };
+  const auto bad = GENERATE(
+      Bad{"rolling_both.toml", "{ friction = 0.1, stiffness = \"1 N*m/rad\", stiffness_factor = 2.25 }", "contact.0.rolling",
+          "give exactly one of stiffness"},
+      Bad{"rolling_none.toml", "{ friction = 0.1 }", "contact.0.rolling", "give exactly one of stiffness"},
+      Bad{"rolling_unit.toml", "{ friction = 0.1, stiffness = \"1 N*m\" }", "contact.0.rolling.stiffness", "expected"},
+      Bad{"rolling_negative.toml", "{ friction = -0.1, stiffness = \"1 N*m/rad\" }", "contact.0.rolling.friction",
+          "must not be negative"},
+      Bad{"rolling_zero_factor.toml", "{ friction = 0.0, stiffness_factor = 2.25 }", "contact.0.rolling.stiffness_factor",
+          "friction = 0"},
+      Bad{"rolling_unknown.toml", "{ friction = 0.1, stiffness = \"1 N*m/rad\", damping = 0.1 }", "contact.0.rolling.damping",
+          "unknown key"},
+      Bad{"rolling_missing.toml", "{ stiffness = \"1 N*m/rad\" }", "contact.0.rolling.friction", "missing"});
+  CAPTURE(bad.name);
+  const auto v = variant(bad.name, "friction = 0.5", std::string("friction = 0.5\nrolling = ") + bad.rolling);
+  const auto msg = read_error(v.path);
+  CHECK_THAT(msg, Contains(std::string(bad.key) + ": "));
+  CHECK_THAT(msg, Contains(bad.expected));
+}
+
+TEST_CASE("case file: rolling resistance in SI: k_r as given or per unit thickness × l, β, ζ_r", "[case][rolling]") {
+  auto law_of = [](const std::string& rolling) {
+    const auto v = variant("rolling_ok.toml", "friction = 0.5", "friction = 0.5\nrolling = " + rolling);
+    return dem::read_case(v.path).model.laws.at(0).rolling;
+  };
+  const dem::RollingLaw given = law_of("{ friction = 0.1, stiffness = \"2 N*m/rad\", damping_ratio = 0.3 }");
+  CHECK(given.enabled);
+  CHECK(given.mu_r == 0.1);
+  CHECK(given.kr == 2.0);
+  CHECK(given.damping_ratio == 0.3);
+  const dem::RollingLaw factor = law_of("{ friction = 0.1, stiffness_factor = 2.25 }");
+  CHECK(factor.kr == 0.0);
+  CHECK(factor.stiffness_factor == 2.25);
+  CHECK(factor.damping_ratio == 0.0);
+  const auto thick = variant("rolling_thick.toml", "friction = 0.5",
+                             "friction = 0.5\nrolling = { friction = 0.1, stiffness = \"2 N/rad\" }");
+  const dem::Case c = dem::read_case(thick.path, {"physics.thickness=0.5 m"});
+  CHECK(c.model.laws.at(0).rolling.kr == 1.0);  // 2 N/rad per unit thickness × 0.5 m
+  CHECK_FALSE(dem::read_case(test::write_temp("no_rolling.toml", minimal_text()).string()).model.laws.at(0).rolling.enabled);
+}

@@ -7,7 +7,7 @@
 //
 // What the oracle covers: disks and PREs, linear and face laws, element and wall contacts, bonded faces,
 // preloads (the constructor's static step, shared by both), a driven element and a driven wall, the base plate
-// (M21), both integrators and the staggered start, spatial reordering. What it does not: a silo's
+// (M21), both integrators and the staggered start, spatial reordering, rolling resistance (R1–R6). What it does not: a silo's
 // discharge (the outlet and the keystone are run.cpp's, between steps; a filled silo is covered), and the
 // blow-up test (the reference makes none).
 #include <catch2/catch.hpp>
@@ -44,6 +44,17 @@ const std::vector<OracleCase> kCases = {
     {"a disk on a slope, staggered start", "cases/bench/disk_on_slope.toml", {"numerics.velocity_start=staggered"}, 500},
     {"a disk rolling off a wall's end: the contact opens while it overlaps (K8) and starts again",
      "tests/lib/fixtures/disk_off_wall_end.toml", {}, 900},
+    {"a settling bed of disks with rolling resistance (R1–R6) between disks and at the walls",
+     "cases/bench/settle_10k.toml",
+     {"numerics.duration=3.2e-3", "contact.0.rolling={ friction = 0.1, stiffness_factor = 2.25, damping_ratio = 0.3 }",
+      "contact.1.rolling={ friction = 0.2, stiffness = \"1e-3 N*m/rad\" }"},
+     700},
+    {"a row of spinning disks with rolling resistance on a floor (shared elements with rolling floor contacts)",
+     "tests/lib/fixtures/rolling_row.toml", {}, 600},
+    {"disks in a box pushed by a driven disk with rolling resistance (K19, rebuilds)", "tests/lib/fixtures/restart_disks.toml",
+     {"contact.0.rolling={ friction = 0.3, stiffness_factor = 2.25, damping_ratio = 0.5 }",
+      "contact.1.rolling={ friction = 0.2, stiffness_factor = 1.0, damping_ratio = 0.4 }"},
+     3000},
 };
 
 }  // namespace

@@ -37,7 +37,7 @@ struct StateLayout {
   std::uint64_t n = 0, walls = 0, candidates = 0, linear_pairs = 0, linear_walls = 0, face_pairs = 0, face_walls = 0;
   std::size_t x = 0, active = 0, wall0 = 0, candidate0 = 0, linear_pair0 = 0, linear_wall0 = 0, face_pair0 = 0,
               face_wall0 = 0, x_ref = 0, clock = 0;
-  static constexpr std::size_t kLinearPair = 77, kLinearWall = 78, kFace = 331;
+  static constexpr std::size_t kLinearPair = 77 + 40, kLinearWall = 78 + 40, kFace = 331;  // + the rolling state (R1–R6)
 
   explicit StateLayout(const std::string& s) {
     std::size_t at = 0;
@@ -145,6 +145,8 @@ TEST_CASE("A crafted checkpoint of disks is refused with the file and the field 
       {"wall_slot_j_just_out", ck.with<std::uint32_t>(at + s.linear_wall0 + 4, 2), "wall index 2 of 2 walls"},  // one past the last
       {"wall_slot_eta_s", ck.with<double>(at + s.linear_wall0 + 13 + 8, kNaN), "linear wall slot 0"},
       {"wall_slot_opened", ck.with<std::uint8_t>(at + s.linear_wall0 + 13 + 6 * 8, 2), "linear wall slot opened"},
+      {"wall_slot_rolling_kr", ck.with<double>(at + s.linear_wall0 + 78 + 8, -1.0), "linear wall slot 0 rolling"},
+      {"wall_slot_rolling_mk", ck.with<double>(at + s.linear_wall0 + 78, kNaN), "linear wall slot 0 rolling"},
       {"x_nan", ck.with<double>(at + s.x + 8, kNaN), "element x[1]"},
       {"active_7", ck.with<std::uint8_t>(at + s.active + 2, 7), "element active[2]"},
       {"wall_nan", ck.with<double>(at + s.wall0 + 16, kNaN), "wall 0 (floor)"},

@@ -20,5 +20,5 @@ TEST_CASE("contacts.csv: one letter per face segment in the order of xi") {
 }
 
 TEST_CASE("contacts.csv: the header names SI units and the sign convention's columns") {
-  CHECK(dem::contacts_csv_header() == "step,t [s],i,j,wall,law,x [m],y [m],nx,ny,fn [N],fs [N],links,segments\n");
+  CHECK(dem::contacts_csv_header() == "step,t [s],i,j,wall,law,x [m],y [m],nx,ny,fn [N],fs [N],links,segments,mr [N*m]\n");
 }

@@ -71,6 +71,7 @@ struct RestartCase {
 
 TEST_CASE("A restart from a checkpoint continues bit for bit like the uninterrupted run", "[outputs][restart]") {
   const RestartCase rc = GENERATE(RestartCase{"tests/lib/fixtures/restart_disks.toml", 5400, 200},
+                                  RestartCase{"tests/lib/fixtures/restart_rolling.toml", 5400, 200},
                                   RestartCase{"tests/lib/fixtures/restart_pre_break.toml", 200, 20},
                                   RestartCase{"tests/lib/fixtures/restart_belt.toml", 700, 100},
                                   RestartCase{"tests/lib/fixtures/restart_plate.toml", 1500, 100});

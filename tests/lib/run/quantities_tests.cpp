@@ -14,7 +14,7 @@ using Catch::Matchers::Contains;
 TEST_CASE("quantities: a contact quantity has exactly three parts and a field it knows", "[outputs]") {
   const dem::Case c = dem::read_case(test::source("tests/lib/fixtures/restart_disks.toml"));
   const dem::Model& m = c.model;
-  const std::string expected = "expected e<i>.<field> or e<i>.gap|fn|fs|links|mobilised.<other>";
+  const std::string expected = "expected e<i>.<field> or e<i>.gap|fn|fs|mr|links|mobilised.<other>";
   for (const char* name : {"e0.fnn.e1", "e0.fx.e1", "e0.x.floor", "e0.fn.e1.e2", "e0.gap.e1.x", "e0.fs.floor.x"}) {
     CAPTURE(name);
     CHECK_THROWS_WITH(dem::compile_quantity(name, m), Contains(name) && Contains(expected));
