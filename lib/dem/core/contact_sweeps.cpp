@@ -45,7 +45,8 @@ inline double reduced_mass(double a, double b) { return a * b / (a + b); }
 }  // namespace
 
 void Simulation::sweep_scatter(double inv_dt) {
-  sweep_linear_pairs<false>(inv_dt, 0, linear_pairs_.size());
+  if (linear_pairs_.with_rolling) sweep_linear_pairs<false, true>(inv_dt, 0, linear_pairs_.size());
+  else sweep_linear_pairs<false, false>(inv_dt, 0, linear_pairs_.size());
   sweep_face_pairs<false>(inv_dt, 0, face_pairs_.size());
   sweep_linear_walls<false>(inv_dt, 0, linear_walls_.size());
   sweep_face_walls<false>(inv_dt, 0, face_walls_.size());
@@ -59,7 +60,8 @@ void Simulation::sweep_share(double inv_dt, std::size_t k, bool from_weight) {
     std::fill(e.moment.begin() + static_cast<std::ptrdiff_t>(b), e.moment.begin() + static_cast<std::ptrdiff_t>(end), 0.0);
   }
   const auto& sl = shares_.slots;
-  sweep_linear_pairs<true>(inv_dt, sl[0][k], sl[0][k + 1]);
+  if (linear_pairs_.with_rolling) sweep_linear_pairs<true, true>(inv_dt, sl[0][k], sl[0][k + 1]);
+  else sweep_linear_pairs<true, false>(inv_dt, sl[0][k], sl[0][k + 1]);
   sweep_face_pairs<true>(inv_dt, sl[1][k], sl[1][k + 1]);
   sweep_linear_walls<true>(inv_dt, sl[2][k], sl[2][k + 1]);
   sweep_face_walls<true>(inv_dt, sl[3][k], sl[3][k + 1]);
@@ -146,7 +148,7 @@ struct PairGeometry {
 // contact run, the next overlapping candidate's distance, square root and normal are already under way
 // (they depend on nothing the law writes). Each stage performs the operations of the plain loop, and the
 // laws run and add their forces in slot order: the same results bit for bit.
-template <bool Shares>
+template <bool Shares, bool Rolling>
 void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t end) {
   Elements& e = m_.elements;
   const double* const x = e.x.data();
@@ -201,7 +203,7 @@ void Simulation::sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t en
     LinearContactState& s = state[c];
     const std::int32_t law_k = law_of[c];
     const PairLaw& law = laws[static_cast<std::size_t>(law_k)];
-    const bool rolls = law.rolling.enabled;
+    const bool rolls = Rolling && law.rolling.enabled;
     if (!touching[c]) {
       touching[c] = 1;
       start_linear(law_k, g.overlap, g.du_n, g.du_s, e.mass[i], e.mass[j], s.eta_n, s.eta_s, s.h);

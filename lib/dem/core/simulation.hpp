@@ -264,7 +264,8 @@ class Simulation {
   // elements that are not shared between threads (thread_shares.hpp; gather_forces sums the shared ones).
   // The disk-disk sweep in two stages one contact apart, and in AVX2 and plain builds (bench/journal.md,
   // "The disk–disk sweep in two stages").
-  template <bool Shares> DEM2D_CLONES_AVX2 void sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t e);
+  // Rolling: some law rolls (linear_pairs_.with_rolling); a model without rolling runs the sweep without its test.
+  template <bool Shares, bool Rolling> DEM2D_CLONES_AVX2 void sweep_linear_pairs(double inv_dt, std::size_t b, std::size_t e);
   // The face sweeps in two builds, picked at start-up: plain x86-64 and AVX2 (three-operand VEX code, no
   // FMA: the same rounding bit for bit; bench/journal.md, "PRE faces: the segment loop"). g++ only: clang
   // (the sanitizer build) does not clone function templates.
