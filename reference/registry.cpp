@@ -593,6 +593,15 @@ std::vector<Entry> rolling_entries() {
        {"delta", "m", "approach before the turn"}, {"theta", "rad", "rotation about the contact point, >= 0"}},
       "N m"},
      [](const Args& a) { return rolling_spring_moment(a("kr"), a("kn"), a("mu_r"), a("r"), a("delta"), a("theta")); }},
+    {{"rolling.pair_spring_moment", "min(k_r theta, mu_r R_r e_n): disk j of a pair turned by theta about the middle of "
+                                    "the overlap, R_r = r_i r_j/(r_i + r_j), e_n = k_n times the overlap of the turned pair",
+      {{"kr", "N m/rad", "rolling spring k_r"}, {"kn", "N/m", "normal spring K_n"}, mu_r, {"r_i", "m", "radius of disk i"},
+       {"r_j", "m", "radius of the turned disk j"}, {"delta", "m", "approach before the turn"},
+       {"theta", "rad", "rotation of j, >= 0"}},
+      "N m"},
+     [](const Args& a) {
+       return rolling_pair_spring_moment(a("kr"), a("kn"), a("mu_r"), a("r_i"), a("r_j"), a("delta"), a("theta"));
+     }},
     {{"rolling.rigid_stop_distance", "3 v0^2/(4 mu_r g): a rigid disk rolling to rest on a flat wall", {v0, mu_r, argument::gravity}, "m"},
      [](const Args& a) { return rolling_stop_distance(a("v0"), a("mu_r"), a("g")); }},
     {{"rolling.rigid_stop_time", "3 v0/(2 mu_r g): the time a rigid disk takes to roll to rest on a flat wall",

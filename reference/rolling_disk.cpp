@@ -139,4 +139,20 @@ double rolling_spring_moment(double kr, double kn, double mu_r, double radius, d
   return std::min(kr * rotation, mu_r * radius * en);  // R_r = r at a wall (R1)
 }
 
+double rolling_pair_spring_moment(double kr, double kn, double mu_r, double r_i, double r_j, double approach, double rotation) {
+  constexpr const char* where = "ref::rolling_pair_spring_moment";
+  detail::require_positive(where, "kr", kr);
+  detail::require_positive(where, "kn", kn);
+  detail::require_non_negative(where, "mu_r", mu_r);
+  detail::require_positive(where, "r_i", r_i);
+  detail::require_positive(where, "r_j", r_j);
+  detail::require_non_negative(where, "approach", approach);
+  detail::require_non_negative(where, "rotation", rotation);
+  // the centres, a_i = r_i − δ/2 and a_j = r_j − δ/2 from the turning point, end a_i² + a_j² + 2 a_i a_j cos θ apart
+  const double a_i = r_i - 0.5 * approach, a_j = r_j - 0.5 * approach;
+  const double distance = std::sqrt(a_i * a_i + a_j * a_j + 2.0 * a_i * a_j * std::cos(rotation));
+  const double en = kn * (r_i + r_j - distance);
+  return std::min(kr * rotation, mu_r * r_i * r_j / (r_i + r_j) * en);
+}
+
 }  // namespace ref

@@ -56,5 +56,10 @@ double rolling_rigid_velocity(double v0, double alpha, double mu_r, double g, do
 /// (e_n = k_n times it) and turned statically by θ about its contact point: the centre's approach grows by
 /// (r − δ)(1 − cos θ) (the rigid turn). Returns the size of the moment: min(k_r θ, μ_r R_r e_n).
 double rolling_spring_moment(double kr, double kn, double mu_r, double radius, double approach, double rotation);
+/// The same for a pair of disks r_i, r_j pressed together by the approach δ, disk j turned statically by θ about
+/// the middle of the overlap (a_i = r_i − δ/2 from i's centre, a_j = r_j − δ/2 from j's): the centres end
+/// √(a_i² + a_j² + 2 a_i a_j cos θ) apart, e_n = k_n times the overlap that leaves; the cap is μ_r R_r e_n with
+/// R_r = r_i r_j/(r_i + r_j) (R1, R4).
+double rolling_pair_spring_moment(double kr, double kn, double mu_r, double r_i, double r_j, double approach, double rotation);
 
 }  // namespace ref

@@ -106,6 +106,7 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"rolling.omega", {"m", "r", "g", "alpha", "ks", "eta_s", "mu", "kr", "cr", "mu_r", "v0", "t"}},
       {"rolling.moment", {"m", "r", "g", "alpha", "ks", "eta_s", "mu", "kr", "cr", "mu_r", "v0", "t"}},
       {"rolling.spring_moment", {"kr", "kn", "mu_r", "r", "delta", "theta"}},
+      {"rolling.pair_spring_moment", {"kr", "kn", "mu_r", "r_i", "r_j", "delta", "theta"}},
       {"rolling.rigid_stop_distance", {"v0", "mu_r", "g"}},
       {"rolling.rigid_stop_time", {"v0", "mu_r", "g"}},
       {"rolling.rigid_velocity", {"v0", "alpha", "mu_r", "g", "t"}},
