@@ -106,6 +106,10 @@ void renumber_pair_slots(LinearPairSlots& slots, const std::vector<std::uint32_t
       std::swap(i, j);
       slots.resultant[k].nx = -slots.resultant[k].nx;
       slots.resultant[k].ny = -slots.resultant[k].ny;
+      if (slots.with_rolling) {  // the rolling moments are those on i (R3, R6): on the new i, the opposite
+        slots.rolling[k].mk = -slots.rolling[k].mk;
+        slots.rolling[k].m = -slots.rolling[k].m;
+      }
     }
     p = {i, j};
   }

@@ -138,8 +138,15 @@ TEST_CASE("A spatial order is a bijection in Morton order of the cells and bring
 
 TEST_CASE("Contacts follow their elements with their histories, turned round where the sides swap",
           "[spatial_order]") {
-  // Settled for a while: contacts with shear history (friction, sliding, rotation).
-  const dem::Case c = dem::read_case(test::write_temp("order_contacts.toml", shuffled_settle(12, 12, 0.1)));
+  // Settled for a while: contacts with shear history (friction, sliding, rotation); a second time with rolling
+  // resistance (R1–R6), whose moments are those on i and must turn round with the pair.
+  const bool rolling = GENERATE(false, true);
+  CAPTURE(rolling);
+  const std::vector<std::string> sets =
+      rolling ? std::vector<std::string>{"contact.0.rolling={ friction = 0.2, stiffness_factor = 2.25, damping_ratio = 0.3 }",
+                                         "contact.1.rolling={ friction = 0.1, stiffness_factor = 2.25, damping_ratio = 0.3 }"}
+              : std::vector<std::string>{};
+  const dem::Case c = dem::read_case(test::write_temp("order_contacts.toml", shuffled_settle(12, 12, 0.1)).string(), sets);
   dem::Simulation a(c.model);
   for (int k = 0; k < 10000; ++k) a.step();
   const auto before = a.contacts();
@@ -154,7 +161,7 @@ TEST_CASE("Contacts follow their elements with their histories, turned round whe
   // Right after the renumbering: the same contacts, keyed by id, same forces and normals, bit for bit.
   const auto mapped = dem::contacts_in_id_order(b);
   REQUIRE(mapped.size() == before.size());
-  int turned = 0;
+  int turned = 0, turned_rolling = 0;
   for (std::size_t k = 0; k < before.size(); ++k) {
     CAPTURE(k);
     const auto& x = before[k];
@@ -166,9 +173,12 @@ TEST_CASE("Contacts follow their elements with their histories, turned round whe
     CHECK(y.fs == x.fs);
     CHECK(y.nx == x.nx);
     CHECK(y.ny == x.ny);
+    CHECK(y.mr == x.mr);
     turned += !x.wall && y.i > y.j;  // b keeps this pair as (j, i)
+    turned_rolling += !x.wall && y.i > y.j && x.mr != 0.0;
   }
   CHECK(turned > 20);  // the test covered pairs whose sides swapped
+  if (rolling) CHECK(turned_rolling > 20);  // and rolling moments among them
   // Stepping on: both runs agree element by element (by id) within round-off growth. A history lost or
   // given to the wrong pair changes the shear force by up to μ f_n at once: far above this.
   for (int k = 0; k < 500; ++k) a.step(), b.step();
