@@ -210,7 +210,7 @@ void add_study_and_sweep(CLI::App& app, Cli& o) {
       app.add_subcommand("study", "Run one verification study and write its result.json; fails if a check fails");
   study->add_option("study", o.study_file, "Study file (verification/<name>/study.toml)")->required()->check(CLI::ExistingFile);
   study->add_option("--out", o.out_dir, "Output folder (default build/studies/<name>)");
-  study->add_option("-j,--jobs", o.jobs, "Runs in parallel")->check(CLI::PositiveNumber);
+  study->add_option("-j,--jobs", o.jobs, "Runs in parallel (1 to 4096)")->check(CLI::Range(1, 4096));
   study->add_flag("--fresh", o.fresh, "Clear the cache of finished runs in the study folder first (run everything again)");
   study->add_flag("-v,--verbose", o.verbose,
                   "A line per finished run on stderr (on a terminal a status line shows runs done, reused, time left)");
@@ -220,7 +220,7 @@ void add_study_and_sweep(CLI::App& app, Cli& o) {
   sweep->add_option("study", o.study_file, "Sensitivity study file (verification/sensitivity_<name>/sensitivity.toml)")
       ->required()->check(CLI::ExistingFile);
   sweep->add_option("--out", o.out_dir, "Output folder (default build/studies/<name>)");
-  sweep->add_option("-j,--jobs", o.jobs, "Runs in parallel")->check(CLI::PositiveNumber);
+  sweep->add_option("-j,--jobs", o.jobs, "Runs in parallel (1 to 4096)")->check(CLI::Range(1, 4096));
   sweep->add_flag("--fresh", o.fresh, "Clear the cache of finished runs in the study folder first");
   sweep->add_flag("-v,--verbose", o.verbose,
                   "A line per finished run on stderr (on a terminal a status line shows runs done, reused, time left)");

@@ -3,7 +3,6 @@
 // the study file's own (plan_runs: deterministic for the file), so analyse rebuilds it and matches
 // the outputs by run number.
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -109,11 +108,9 @@ void read_outputs_csv(const Sens& s, const fs::path& file, std::vector<Run>& run
       double y = std::nan("");
       bool number = !x.empty() && !std::isspace(static_cast<unsigned char>(x.front()));
       if (number) {
-        errno = 0;
         char* end = nullptr;
-        y = std::strtod(x.c_str(), &end);
+        y = std::strtod(x.c_str(), &end);  // an overflow gives ±HUGE_VAL (not finite: a failed run), an underflow its value
         number = end == x.c_str() + x.size();
-        if (errno == ERANGE && std::abs(y) > 1.0) y = std::copysign(HUGE_VAL, y);  // overflow; underflow keeps its value
       }
       if (!number && !x.empty()) fail(n, fmt::format("{}: expected a number, got \"{}\"", s.outputs[o], x));
       if (!std::isfinite(y)) {

@@ -1138,6 +1138,14 @@ double check_case(const Case& c, StabilityBound* bound) {
   if (std::isnan(limit))
     throw CaseError(fmt::format("{}: numerics.dt: the stability limit is not a number: element {} has {}", dt_at,
                                 b.element, b.law));
+  if (m.numerics.dt > limit && !m.numerics.allow_unstable && !(limit > 0.0)) {
+    // K19 without damping (or a contact without a dashpot): its Hopf bound Δt < η/K is 0, no Δt is stable
+    throw CaseError(fmt::format(
+        "{}: numerics.dt: no time step is stable: the limit of {} for the contacts this case can form is 0 "
+        "(set by element {}, {}; refs §1.5: K19 needs damping, Δt < η/K). Give the contacts a damping ratio, "
+        "use integrator = \"K18\", or numerics.allow_unstable = true for a stability study.",
+        dt_at, m.numerics.integrator == Integrator::k18 ? "K18" : "K19", b.element, b.law));
+  }
   if (m.numerics.dt > limit && !m.numerics.allow_unstable) {
     throw CaseError(fmt::format(
         "{}: numerics.dt: {:.6g} s is above the stability limit {:.6g} s of {} for the contacts this case can "

@@ -375,3 +375,16 @@ TEST_CASE("case file: rolling resistance in SI: k_r as given or per unit thickne
   CHECK(c.model.laws.at(0).rolling.kr == 1.0);  // 2 N/rad per unit thickness × 0.5 m
   CHECK_FALSE(dem::read_case(test::write_temp("no_rolling.toml", minimal_text()).string()).model.laws.at(0).rolling.enabled);
 }
+
+TEST_CASE("case file: K19 without damping is refused as having no stable time step, not 'dt <= 0 s'", "[case]") {
+  // K19's Hopf bound Δt < η/K is 0 without a dashpot (refs §1.5): no Δt is stable. The message says so and
+  // what to do, never "use numerics.dt <= 0 s".
+  const auto v = variant("k19_undamped.toml", "damping_ratio = 0.3", "damping_ratio = 0.0");
+  const auto msg = test::message_of<dem::CaseError>(
+      [&] { dem::check_case(dem::read_case(v.path, {"numerics.integrator=K19"})); });
+  CHECK_THAT(msg, Contains("numerics.dt: no time step is stable"));
+  CHECK_THAT(msg, Contains("damping ratio") && Contains("K18") && Contains("allow_unstable"));
+  CHECK_THAT(msg, !Contains("dt <= 0"));
+  // with damping, K19 has a limit and the usual message
+  CHECK_NOTHROW(dem::check_case(dem::read_case(v.path, {"numerics.integrator=K19", "contact.0.damping_ratio=0.3"})));
+}
