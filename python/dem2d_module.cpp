@@ -19,6 +19,7 @@
 #include "dem/run/output_files.hpp"
 #include "dem/run/resolved_case.hpp"
 #include "dem/run/run.hpp"
+#include "dem/run/run_threads.hpp"
 #include "engine/sensitivity.hpp"
 #include "engine/study.hpp"
 
@@ -71,10 +72,18 @@ struct SigintDuringRun {
   }
 };
 
-py::dict run(const dem::Case& c, const fs::path& out, int threads, bool handle_sigint) {
+py::dict run(const dem::Case& c, const fs::path& out, long long threads, bool handle_sigint) {
+  // As `dem2d run --threads`: 1 to 1024, and never more than this process may use (the number asked is
+  // recorded in summary.json's "threads" beside the number used).
+  if (threads < 1 || threads > 1024)
+    throw py::value_error("threads=" + std::to_string(threads) + ": expected a whole number from 1 to 1024 (as dem2d run --threads)");
   dem::RunOptions opt;
   opt.out_dir = out;
-  opt.threads = threads;
+  opt.threads = static_cast<int>(threads);
+  if (const int usable = dem::threads_for_run(opt.threads); usable < opt.threads) {
+    opt.threads_asked = opt.threads;
+    opt.threads = usable;
+  }
   dem::RunResult r;
   {
     SigintDuringRun guard(handle_sigint);

@@ -149,8 +149,10 @@ class Result:
 def run(case, out=None, threads=1):
     """Runs a case (a Case, or a path read with no overrides) as `dem2d run` does. out: the output folder
     (series.csv, summary.json, vtk/, ...; cleared first); None: a temporary folder, removed after the series
-    is read. The GIL is released while it runs; Ctrl-C (SIGINT) stops the run at the next step with status
-    "interrupted", everything written. A blow-up is status "blow-up", not an exception."""
+    is read. threads: 1 to 1024 (ValueError otherwise, TypeError for a non-integer), never more than the
+    cores this process may use (summary "threads" records the number asked and the number used). The GIL is
+    released while it runs; Ctrl-C (SIGINT) stops the run at the next step with status "interrupted",
+    everything written. A blow-up is status "blow-up", not an exception."""
     if not isinstance(case, Case):
         case = load_case(case)
     if out is None:
@@ -160,8 +162,10 @@ def run(case, out=None, threads=1):
 
 
 def _run_into(case, out, threads, keep):
+    if isinstance(threads, bool) or not isinstance(threads, int):
+        raise TypeError(f"threads={threads!r}: expected a whole number from 1 to 1024 (as dem2d run --threads)")
     try:
-        d = _core.run(case._core, out, int(threads), _in_main_thread())
+        d = _core.run(case._core, out, threads, _in_main_thread())
     except _core.CaseError as e:
         _reraise(e, case._sets)
     return Result(d, _read_series(os.path.join(out, "series.csv")), out if keep else None,

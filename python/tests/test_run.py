@@ -85,3 +85,25 @@ def test_a_case_can_run_twice_the_same(root):
     case = dem2d.load_case(root / "cases/impact/disk_wall.toml")
     a, b = dem2d.run(case), dem2d.run(case)
     assert a.series.equals(b.series) and a.probes == b.probes
+
+
+def test_threads_are_range_checked_and_the_number_used_recorded(root):
+    """threads= as `dem2d run --threads`: 1 to 1024, else ValueError; not an integer: TypeError; above the
+    usable cores: run on those, and summary.json records both numbers."""
+    import json
+    import os
+
+    import pytest
+
+    case = dem2d.load_case(root / "cases/basic/free_fall.toml")
+    for bad in (0, -1, 10**6):
+        with pytest.raises(ValueError, match="from 1 to 1024"):
+            dem2d.run(case, threads=bad)
+    for bad in (1.5, "2", True):
+        with pytest.raises(TypeError):
+            dem2d.run(case, threads=bad)
+    usable = len(os.sched_getaffinity(0))
+    r = dem2d.run(case, threads=1024)
+    t = json.loads(r.summary) if isinstance(r.summary, str) else r.summary
+    assert t["threads"]["asked"] == 1024
+    assert t["threads"]["used"] <= usable
