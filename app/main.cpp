@@ -265,7 +265,15 @@ bool unknown_subcommand(CLI::App& app, int argc, char** argv) {
   return true;
 }
 
+/// --out must be a folder or not exist yet: the rule, message and exit status (4) of `dem2d run` and `report`.
+void check_out_is_folder(const std::string& out) {
+  std::error_code ec;
+  if (!out.empty() && fs::exists(out, ec) && !fs::is_directory(out, ec))
+    throw dem::OutputError(fmt::format("{}: --out: exists and is not a folder", out));
+}
+
 int cmd_study(const Cli& o, bool sweep) {
+  check_out_is_folder(o.out_dir);
   ver::StudyOptions so;
   so.out_dir = o.out_dir;
   so.jobs = o.jobs;
@@ -330,6 +338,7 @@ int dispatch(Cli& o, int argc, char** argv) {
     if (*o.study) return cmd_study(o, false);
     if (*o.sweep) return cmd_study(o, true);
     if (*o.analyse) {
+      check_out_is_folder(o.out_dir);
       ver::StudyOptions so;
       so.out_dir = o.out_dir;
       return ver::analyse_sensitivity(o.study_file, o.outputs_file, so).passed ? 0 : 1;
