@@ -177,6 +177,9 @@ void add_run(CLI::App& app, Cli& o) {
                       "bit for any number")
       ->transform(CLI::Transformer({{"auto", cores}}))
       ->check(CLI::Range(1, 1024));
+  run->add_flag("--restart-any-version", o.run_opt.restart_any_version,
+                "Accept a checkpoint written by another dem2d version (refused otherwise: the restart would not "
+                "continue bit for bit; summary.json records both versions)");
   run->add_flag("--fixed-threads", [&o](std::int64_t) { o.run_opt.governed = false; },
                 "Exactly --threads threads at every step, also on a busy machine (benchmarks)");
   run->add_flag("--timings", o.run_opt.timings,

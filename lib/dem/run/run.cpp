@@ -86,12 +86,27 @@ bool past_peak(double value, double drop, double& peak) {
   return peak > 0.0 && std::abs(value) <= (1.0 - drop) * peak;
 }
 
+/// The code version recorded in a checkpoint ("unknown" if it has none).
+std::string checkpoint_code_version(const Checkpoint& ck) {
+  const auto p = nlohmann::json::json_pointer("/provenance/code_version");
+  return ck.meta.is_object() && ck.meta.contains(p) && ck.meta[p].is_string() ? ck.meta[p].get<std::string>() : "unknown";
+}
+
 /// A restart's checkpoint, read before anything is written (it may lie in the output folder, which is
 /// cleared later); none without --restart / --start-from. Throws CaseError for another case's checkpoint.
 std::optional<Checkpoint> read_restart(const Case& c, const RunOptions& opt) {
   std::optional<Checkpoint> restart;
   if (!opt.restart.empty()) {
     restart = read_checkpoint(opt.restart);
+    // A restart continues bit for bit only with the code that wrote the checkpoint: another version is refused
+    // unless the user says so (and summary.json's "restart" records both versions).
+    const std::string written = checkpoint_code_version(*restart);
+    if (written != DEM2D_VERSION && !opt.restart_any_version)
+      throw CaseError(fmt::format("{}: {} {}: the checkpoint was written by dem2d {}, this is dem2d {}: a restart continues "
+                                  "bit for bit only with the code that wrote it. Use that version, or give "
+                                  "--restart-any-version to continue with this one",
+                                  opt.restart.string(), opt.restart_other_case ? "--start-from" : "--restart",
+                                  opt.restart.string(), written, DEM2D_VERSION));
     if (!opt.restart_other_case && restart->case_hash != case_hash(c))
       throw CaseError(fmt::format("{}: --restart {}: the checkpoint belongs to another case ({}, case hash {}, this "
                                   "case {}); to start this case from it, use --start-from",
@@ -475,7 +490,8 @@ static RunResult run_opened(const Case& c, const RunOptions& opt, Simulation& si
   if (restart)
     res.summary["restart"] = {{"checkpoint", opt.restart.string()}, {"from_case", restart->case_path},
                               {"step", restart->step}, {"time", restart->time}, {"other_case", opt.restart_other_case},
-                              {"checkpoint_written_by", restart->meta}};
+                              {"checkpoint_written_by", restart->meta},
+                              {"code_version_differs", checkpoint_code_version(*restart) != DEM2D_VERSION}};
   out.commit(sim, res.summary, res.status == "interrupted" || opt.checkpoint_at_end, loop_state(loop, probes));
   return res;
 }

@@ -23,6 +23,7 @@ struct RunOptions {
   bool checkpoint_at_end = false;
   std::filesystem::path restart;     // continue from this checkpoint (of the same case, unless:)
   bool restart_other_case = false;   //   the checkpoint is the start of this (other) case
+  bool restart_any_version = false;  // accept a checkpoint another code version wrote (refused otherwise)
   std::int64_t interrupt_at_step = 0;  // tests: behave as if SIGTERM arrived after this step (0: no)
   int threads = 1;  // threads inside the run (Simulation::set_threads); results are the same for any number
   std::size_t min_per_thread = 1024;  // elements per thread at least (tests: 1)

@@ -255,3 +255,40 @@ TEST_CASE("A checkpoint of another format version is refused with both versions 
              StartsWith(older.string() + ": checkpoint format version " + std::to_string(dem::kCheckpointVersion - 1) +
                         ", this dem2d reads version " + std::to_string(dem::kCheckpointVersion)));
 }
+
+TEST_CASE("A checkpoint another code version wrote is refused unless --restart-any-version, which is recorded",
+          "[outputs][restart][checkpoint]") {
+  const dem::Case disks = dem::read_case(test::source("tests/lib/fixtures/restart_disks.toml"));
+  const fs::path dir = test::fresh_dir("dem2d_unit_checkpoint_checks", "version");
+  dem::RunOptions o;
+  o.out_dir = dir / "a";
+  o.interrupt_at_step = 2000;
+  REQUIRE(dem::run_case(disks, o).status == "interrupted");
+  const CheckpointBytes ck(dir / "a" / "checkpoint.bin");
+  const std::string version = dem::read_checkpoint(dir / "a" / "checkpoint.bin").meta["provenance"]["code_version"];
+  REQUIRE(!version.empty());
+  // the same file with the recorded version changed in its first letter (the checksum made valid again)
+  const std::size_t at = ck.bytes.find("\"code_version\":\"" + version + "\"");
+  REQUIRE(at != std::string::npos);
+  const std::size_t first = at + std::strlen("\"code_version\":\"");
+  const char other = version[0] == 'X' ? 'Y' : 'X';
+  const fs::path f = write(dir, "other_version.bin", ck.with<char>(first, other));
+  const std::string written = std::string(1, other) + version.substr(1);
+  const std::string error = restart_error(disks, f, dir / "refused");
+  CHECK_THAT(error, Contains(f.string()) && Contains("written by dem2d " + written) && Contains("--restart-any-version"));
+  // accepted when the user says so, and recorded
+  dem::RunOptions any;
+  any.out_dir = dir / "accepted";
+  any.restart = f;
+  any.restart_any_version = true;
+  REQUIRE(dem::run_case(disks, any).status == "completed");
+  const auto summary = nlohmann::json::parse(test::slurp(dir / "accepted" / "summary.json"));
+  CHECK(summary["restart"]["code_version_differs"] == true);
+  CHECK(summary["restart"]["checkpoint_written_by"]["provenance"]["code_version"] == written);
+  // the unchanged file restarts without the flag, and says the versions agree
+  dem::RunOptions same;
+  same.out_dir = dir / "same";
+  same.restart = dir / "a" / "checkpoint.bin";
+  REQUIRE(dem::run_case(disks, same).status == "completed");
+  CHECK(nlohmann::json::parse(test::slurp(dir / "same" / "summary.json"))["restart"]["code_version_differs"] == false);
+}
