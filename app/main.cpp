@@ -72,9 +72,10 @@ int cmd_check(const fs::path& file, const std::vector<std::string>& sets) {
   const nlohmann::json rc = dem::resolved_case_si(c);
   fmt::print("{}: OK — {}\n", file.string(), c.title);
   if (!c.source.empty()) fmt::print("  source: {}\n", c.source);
-  fmt::print("  {} elements ({} disks, {} PREs), {} walls, {} materials, {} contact laws\n", m.elements.size(),
-             rc["elements"]["disks"].get<std::size_t>(), rc["elements"]["pres"].get<std::size_t>(), m.walls.size(),
-             m.materials.size(), m.laws.size());
+  fmt::print("  {} elements ({} disks, {} PREs{}), {} walls, {} materials, {} contact laws\n", m.elements.size(),
+             rc["elements"]["disks"].get<std::size_t>(), rc["elements"]["pres"].get<std::size_t>(),
+             rc["elements"].contains("polygons") ? fmt::format(", {} polygons", rc["elements"]["polygons"].get<std::size_t>()) : "",
+             m.walls.size(), m.materials.size(), m.laws.size());
   fmt::print("  total mass {:.6g} kg (thickness {:.6g} m), gravity ({:.6g}, {:.6g}) m/s^2\n", dem::total_mass(m), m.thickness,
              m.gravity.x, m.gravity.y);
   fmt::print("  integrator {} ({}), velocity start {} ({}), dt = {:.6g} s, duration = {:.6g} s ({} steps)\n",

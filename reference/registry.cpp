@@ -23,6 +23,7 @@
 #include "ref/pre_time_step.hpp"
 #include "ref/require.hpp"
 #include "ref/resting_overlap.hpp"
+#include "ref/rocking_block.hpp"
 #include "ref/rolling_disk.hpp"
 #include "ref/silo.hpp"
 #include "ref/silo_fill.hpp"
@@ -271,6 +272,28 @@ std::vector<Entry> block_entries() {
        detail::require_positive("incline.mode", "h", a("h"));
        return static_cast<double>(mode_sagaseta(a("alpha"), a("phi"), a("b") / a("h")));
      }},
+    {{"rocking.impact_time",
+      "Housner's rocking block: time from release at tilt theta0 to the first impact (refs §2.4; GSL QAWS)",
+      {{"b", "m", "half the block's width"}, {"h", "m", "half the block's height"}, {"theta0", "rad", "release tilt, in (0, atan(b/h))"},
+       argument::gravity},
+      "s"},
+     [](const Args& a) { return rocking_impact_time(a("b"), a("h"), a("theta0"), a("g")); }},
+    {{"rocking.impact_speed",
+      "Housner's rocking block: angular speed |omega_1| at the first impact (refs §2.4)",
+      {{"b", "m", "half the block's width"}, {"h", "m", "half the block's height"}, {"theta0", "rad", "release tilt, in (0, atan(b/h))"},
+       argument::gravity},
+      "rad/s"},
+     [](const Args& a) { return rocking_impact_speed(a("b"), a("h"), a("theta0"), a("g")); }},
+    {{"rocking.rebound_tilt",
+      "Housner's rocking block: tilt on the other corner after the first impact, r = 1 - 1.5 sin^2 alpha (refs §2.4)",
+      {{"b", "m", "half the block's width"}, {"h", "m", "half the block's height"}, {"theta0", "rad", "release tilt, in (0, atan(b/h))"}},
+      "rad"},
+     [](const Args& a) { return rocking_rebound_tilt(a("b"), a("h"), a("theta0")); }},
+    {{"rocking.restitution",
+      "Housner's coefficient of restitution of the angular velocity, r = 1 - 1.5 sin^2 alpha (refs §2.4)",
+      {{"b", "m", "half the block's width"}, {"h", "m", "half the block's height"}},
+      "1"},
+     [](const Args& a) { return rocking_restitution(a("b"), a("h")); }},
     {{"incline.mode_gb",
       "Goodman & Bray mode: 0 stable, 1 slide, 2 topple, 3 slide+topple (refs §2.2)",
       {argument::slope,

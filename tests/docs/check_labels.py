@@ -7,7 +7,7 @@
 
 Words used below:
 
-- A *label* is K, M or R (the rolling resistance of docs/model.md §4), an equation number of 1 or 2 digits, and an optional sub-equation written with
+- A *label* is K, M, R (the rolling resistance of docs/model.md §4) or P (the polygon element, §5), an equation number of 1 or 2 digits, and an optional sub-equation written with
   a dot and one digit or lower-case letter: K19, K6.a, M15.1 (Kiyama & Fujimura, Matsui & Nishimura;
   docs/model.md). A group label (K7) stands for all its sub-equations (K7.a, K7.b).
 - docs/model.md *defines* a label when the label opens a parenthesis or opens an item of a parenthesised
@@ -53,10 +53,10 @@ MODEL = "docs/model.md"
 
 W = r"A-Za-z0-9_"
 # A label in canonical spelling; the look-ahead keeps "K1" out of "K19" and "K6" out of "K6.a".
-LABEL = re.compile(rf"(?<![{W}])([KMR])([0-9]{{1,2}})(?:\.([0-9a-z]))?(?![{W}]|\.[0-9a-z](?![{W}]))")
+LABEL = re.compile(rf"(?<![{W}])([KMRP])([0-9]{{1,2}})(?:\.([0-9a-z]))?(?![{W}]|\.[0-9a-z](?![{W}]))")
 # Non-canonical: digits followed directly by lower-case letters, or by the paper's middle dot.
-BAD_SPELLING = re.compile(rf"(?<![{W}])[KMR][0-9]{{1,2}}(?:[a-z]|\s*[·・]\s*[0-9a-z])(?![{W}])")
-ITEM = re.compile(r"^([KMR])([0-9]{1,2})(?:\.([0-9a-z]))?(?:\s*[–-]\s*([KMR])([0-9]{1,2}))?(?![A-Za-z0-9_.])")
+BAD_SPELLING = re.compile(rf"(?<![{W}])[KMRP][0-9]{{1,2}}(?:[a-z]|\s*[·・]\s*[0-9a-z])(?![{W}])")
+ITEM = re.compile(r"^([KMRP])([0-9]{1,2})(?:\.([0-9a-z]))?(?:\s*[–-]\s*([KMRP])([0-9]{1,2}))?(?![A-Za-z0-9_.])")
 
 
 def labels_of_item(item):

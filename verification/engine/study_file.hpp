@@ -112,6 +112,7 @@ struct Study {
   std::vector<double> phis, alphas;  // [rad]
   double radius = 0.0, margin = 0.0, rotation_threshold = 0.0, slide_threshold = 0.0;
   int wall_contact = 1;
+  bool polygon_block = false;  // block = "polygon": each block is one polygon (element 0) of 2r·columns × 2r·rows
 };
 
 /// The `setup` table of a study or sensitivity file (numbers and strings, shown in the report).
@@ -127,7 +128,8 @@ bool applies(const Check& c, const Variant& v);
 const char* kind_word(Kind k);
 
 /// The overrides of one mode-map grid point (study_mode_map.cpp): the study's `set`, then the block's
-/// lattice (`blocks[block]`), the slope angle α as the gravity direction, the friction angle φ of contact
+/// lattice (`blocks[block]`; with block = "polygon" the size and position of polygon element 0, its base on
+/// the slope from x = 0 to x = b), the slope angle α as the gravity direction, the friction angle φ of contact
 /// `wall_contact`, the pivot probes; read_study reads the case with them for every block before anything runs.
 std::vector<std::string> mode_map_sets(const Study& s, std::size_t block, double phi, double alpha);
 

@@ -63,12 +63,22 @@ nlohmann::json mode_chart(const Study& s, const std::vector<ModePoint>& pts) {
 std::vector<std::string> mode_map_sets(const Study& s, std::size_t block, double phi, double alpha) {
   const auto [cols, rows] = s.blocks.at(block);
   std::vector<std::string> sets = s.set;
-  sets.push_back(fmt::format("lattice.0.columns={}", cols));
-  sets.push_back(fmt::format("lattice.0.rows={}", rows));
+  if (s.polygon_block) {  // one polygon b × h, its base on the slope from x = 0 to x = b
+    const double bw = 2.0 * s.radius * cols, bh = 2.0 * s.radius * rows;
+    sets.push_back(fmt::format("element.0.size=[{:.17g}, {:.17g}]", bw, bh));
+    sets.push_back(fmt::format("element.0.position=[{:.17g}, {:.17g}]", 0.5 * bw, 0.5 * bh));
+    sets.push_back("probe.0.quantity=e0.px(1,-1)");
+    sets.push_back("probe.2.quantity=e0.px(1,-1)");
+  } else {
+    sets.push_back(fmt::format("lattice.0.columns={}", cols));
+    sets.push_back(fmt::format("lattice.0.rows={}", rows));
+  }
   sets.push_back(fmt::format("physics.gravity.direction={:.17g} deg", alpha * 180.0 / std::numbers::pi - 90.0));
   sets.push_back(fmt::format("contact.{}.friction_angle={:.17g} deg", s.wall_contact, phi * 180.0 / std::numbers::pi));
-  sets.push_back(fmt::format("probe.0.quantity=e{}.px(1,-1)", cols - 1));
-  sets.push_back(fmt::format("probe.2.quantity=e{}.px(1,-1)", cols - 1));
+  if (!s.polygon_block) {
+    sets.push_back(fmt::format("probe.0.quantity=e{}.px(1,-1)", cols - 1));
+    sets.push_back(fmt::format("probe.2.quantity=e{}.px(1,-1)", cols - 1));
+  }
   return sets;
 }
 

@@ -357,16 +357,21 @@ struct Reader {
     double omega;
   };
 
-  ElementCommon common(const TableReader& r, bool radius_required = true) {
+  ElementCommon common(const TableReader& r, bool radius_required = true, bool polygon_allowed = false) {
     ElementCommon e{};
-    e.shape = r.choice("shape", {"disk", "pre"}, "disk") == "disk" ? Shape::disk : Shape::pre;
+    const std::string shape = r.choice("shape", {"disk", "pre", "polygon"}, "disk");
+    e.shape = shape == "disk" ? Shape::disk : shape == "pre" ? Shape::pre : Shape::polygon;
+    if (e.shape == Shape::polygon && !polygon_allowed)
+      r.fail("shape", "polygons are given in [[element]] (vertices or size) or as a block in [[lattice]] (size)");
     e.material = material(r, "material");
-    if (radius_required || r.has("radius")) {
+    if (e.shape == Shape::polygon) {
+      if (r.has("radius")) r.fail("radius", "a polygon's size comes from its vertices (or size), not a radius");
+    } else if (radius_required || r.has("radius")) {
       e.radius = r.quantity("radius", dims::length);
       positive(r, "radius", e.radius);
     }
     e.pre_mass = r.choice("pre_mass", {"square", "disk"}, "square") == "square" ? PreMass::square : PreMass::disk;
-    if (e.shape == Shape::disk && r.has("pre_mass")) r.fail("pre_mass", "only for shape = \"pre\"");
+    if (e.shape != Shape::pre && r.has("pre_mass")) r.fail("pre_mass", "only for shape = \"pre\"");
     e.mass = r.quantity("mass", dims::mass, 0.0);
     if (r.has("mass")) positive(r, "mass", e.mass);
     const std::string motion = r.choice("motion", {"free", "fixed", "driven"}, "free");
@@ -499,6 +504,70 @@ struct Reader {
       ec.radius = d.radius;
       place(ec, d.centre, 0.0, -1);
     }
+  }
+
+  /// [[lattice]] shape = "polygon": a block cut into columns × rows rectangles of `size` = [w, h], the first
+  /// centred on `origin`, the lattice axes turned by `rotation` (each rectangle with them). Polygons are not
+  /// bonded (no bonds between polygons yet): bonded = false is required.
+  void read_polygon_block(const TableReader& r, const ElementCommon& ec) {
+    const Vec2 origin = r.vector("origin", dims::length);
+    const auto nx = r.integer("columns", 1, 100000), ny = r.integer("rows", 1, 100000);
+    room_for(r, "rows", nx * ny);
+    const Vec2 size = r.vector("size", dims::length);
+    if (!(size.x > 0.0) || !(size.y > 0.0) || !std::isfinite(size.x) || !std::isfinite(size.y))
+      r.fail("size", "expected a positive width and height");
+    if (r.has("spacing")) r.fail("spacing", "a polygon block's rectangles lie side by side: their size is the spacing");
+    const double rot = r.quantity("rotation", dims::angle, 0.0);
+    if (r.boolean("bonded", true)) r.fail("bonded", "polygons have no bonds yet: give bonded = false (a block of loose rectangles)");
+    if (c.model.materials[static_cast<std::size_t>(ec.material)].density <= 0.0 && ec.mass <= 0.0)
+      r.fail("mass", "the material has no density: give each polygon's mass");
+    const Vec2 ex{std::cos(rot), std::sin(rot)}, ey = perp(ex);
+    const double half = 0.5 * std::hypot(size.x, size.y);
+    const Vec2 far = origin + ex * (size.x * static_cast<double>(nx - 1)) + ey * (size.y * static_cast<double>(ny - 1));
+    in_extent(r, "origin", origin, half);
+    in_extent(r, "size", far, half);
+    std::vector<Vec2> corners;
+    for (const Vec2& v : rectangle_vertices(size.x, size.y)) corners.push_back(ex * v.x + ey * v.y);
+    for (std::int64_t b = 0; b < ny; ++b)
+      for (std::int64_t a = 0; a < nx; ++a) {
+        const std::size_t i = add_polygon(c.model, ec.material, corners, origin + ex * (size.x * a) + ey * (size.y * b),
+                                          ec.velocity, ec.omega, ec.mass);
+        c.model.elements.motion[i] = ec.motion;
+        c.model.elements.drive[i] = ec.drive;
+      }
+  }
+
+  /// A polygon element (docs/model.md §5): `vertices` = [[x, y], ...] counter-clockwise relative to `position`,
+  /// or `size` = [w, h], a rectangle centred on it; its centre is the centroid (P1).
+  std::size_t place_polygon(const TableReader& r, const ElementCommon& ec, Vec2 pos, double rotation) {
+    if (r.has("vertices") == r.has("size")) r.fail_here("a polygon needs exactly one of vertices = [[x, y], ...] or size = [w, h]");
+    std::vector<Vec2> corners;
+    if (r.has("size")) {
+      const Vec2 size = r.vector("size", dims::length);
+      if (!(size.x > 0.0) || !(size.y > 0.0)) r.fail("size", "expected a positive width and height");
+      corners = rectangle_vertices(size.x, size.y);
+    } else {
+      const toml::array* vs = r.node("vertices")->as_array();
+      r.mark("vertices");
+      if (!vs) r.fail("vertices", "expected vertices = [[x, y], ...], counter-clockwise, relative to position");
+      for (std::size_t k = 0; k < vs->size(); ++k) {
+        const toml::array* v = vs->get(k)->as_array();
+        if (!v || v->size() != 2) r.fail_at(*vs->get(k), "vertices", "expected [x, y] corners");
+        corners.push_back({r.quantity_of(*v->get(0), "vertices", dims::length), r.quantity_of(*v->get(1), "vertices", dims::length)});
+      }
+      if (corners.size() > 64) r.fail("vertices", fmt::format("at most 64 corners, got {}", corners.size()));
+    }
+    if (const std::string why = polygon_problem(corners); !why.empty()) r.fail(r.has("size") ? "size" : "vertices", why);
+    const PolygonProperties p = polygon_properties(corners);
+    in_extent(r, "vertices", pos + p.centroid, p.circumradius);
+    if (c.model.materials[static_cast<std::size_t>(ec.material)].density <= 0.0 && ec.mass <= 0.0)
+      r.fail("mass", "the material has no density: give the polygon's mass");
+    const std::size_t i = add_polygon(c.model, ec.material, corners, pos, ec.velocity, ec.omega, ec.mass);
+    Elements& e = c.model.elements;
+    e.phi[i] = rotation;
+    e.motion[i] = ec.motion;
+    e.drive[i] = ec.drive;
+    return i;
   }
 
   std::size_t place(const ElementCommon& ec, Vec2 pos, double rotation, std::int32_t group) {
@@ -680,11 +749,11 @@ void Reader::read_drives(const TableReader& top) {
 void Reader::read_elements(const TableReader& top) {
   Model& m = c.model;
   each(top, "element", [&](TableReader& r, std::size_t) {
-    const auto ec = common(r);
+    const auto ec = common(r, true, true);
     const Vec2 pos = r.vector("position", dims::length);
     in_extent(r, "position", pos, ec.radius);
     const double rot = r.quantity("rotation", dims::angle, 0.0);
-    const std::size_t idx = place(ec, pos, rot, -1);
+    const std::size_t idx = ec.shape == Shape::polygon ? place_polygon(r, ec, pos, rot) : place(ec, pos, rot, -1);
     if (const toml::table* pt = r.table("preload")) {
       TableReader pr(*pt, r.key_path("preload"), file);
       Preload p;
@@ -701,7 +770,9 @@ void Reader::read_elements(const TableReader& top) {
 void Reader::read_lattices(const TableReader& top) {
   // [[lattice]]: columns × rows elements, axes rotated by `rotation`, spacing 2r by default
   each(top, "lattice", [&](TableReader& r, std::size_t) {
-    const auto ec = common(r);
+    const auto ec = common(r, true, true);
+    if (ec.shape == Shape::polygon) return read_polygon_block(r, ec);
+    if (r.has("size")) r.fail("size", "only for shape = \"polygon\"");
     const Vec2 origin = r.vector("origin", dims::length);
     const auto nx = r.integer("columns", 1, 100000), ny = r.integer("rows", 1, 100000);
     room_for(r, "rows", nx * ny);
@@ -1103,8 +1174,7 @@ double check_case(const Case& c, StabilityBound* bound) {
   NeighbourSearch ns;
   ns.build(e, 0.0, pairs);
   for (const auto& p : pairs) {
-    const double d = std::hypot(e.x[p.j] - e.x[p.i], e.y[p.j] - e.y[p.i]);
-    const double overlap = e.radius[p.i] + e.radius[p.j] - d;
+    const double overlap = element_overlap(m, p.i, p.j);
     const bool both_fixed = e.motion[p.i] != Motion::free && e.motion[p.j] != Motion::free;
     const double tol = both_fixed ? 1e-9 * std::min(e.radius[p.i], e.radius[p.j])
                                   : 0.05 * std::min(e.radius[p.i], e.radius[p.j]);
@@ -1117,8 +1187,7 @@ double check_case(const Case& c, StabilityBound* bound) {
   }
   for (std::size_t i = 0; i < e.size(); ++i) {
     for (const Wall& w : m.walls) {
-      const Vec2 ctr{e.x[i], e.y[i]};
-      const double overlap = e.radius[i] - norm(closest_point(w, ctr) - ctr);
+      const double overlap = wall_overlap(m, i, w);
       const double tol = e.motion[i] != Motion::free ? 1e-9 * e.radius[i] : 0.05 * e.radius[i];
       if (overlap > tol) {
         const ElementSource a = element_source(c, i);

@@ -178,10 +178,10 @@ TableSpec contact_table() {
 
 /// The keys every element table has ([[element]], [[lattice]], [[row]], [[arrangement]]).
 std::vector<KeySpec> element_keys(bool radius_required) {
-  KeySpec radius = q("radius", {d::length}, "the element radius");
+  KeySpec radius = q("radius", {d::length}, radius_required ? "the element radius" : "the element radius (required unless shape = \"polygon\")");
   radius.required = radius_required;
   return {
-      words("shape", {"disk", "pre"}, "a disk, or a pseudo-rectangle element (PRE)", "disk"),
+      words("shape", {"disk", "pre", "polygon"}, "a disk, a pseudo-rectangle element (PRE), or a rigid convex polygon ([[element]], [[lattice]])", "disk"),
       need(text("material", "a [[material]] name")),
       radius,
       words("pre_mass", {"square", "disk"}, "pre: the mass and inertia of the square (M17) or the disk (M18)", "square"),
@@ -194,17 +194,22 @@ std::vector<KeySpec> element_keys(bool radius_required) {
 }
 
 std::vector<TableSpec> element_tables() {
-  TableSpec element{"element", "One element.", element_keys(true)};
+  // [[element]] and [[lattice]] take polygons, which have no radius: the radius is required unless shape =
+  // "polygon" (the schema says so with an if/else, case_schema.cpp)
+  TableSpec element{"element", "One element.", element_keys(false)};
   element.keys.push_back(need(many("position", SpecKind::vector, d::length, "the centre [x, y]")));
   element.keys.push_back(q("rotation", {d::angle}, "the rotation", "0 deg"));
+  element.keys.push_back(many("vertices", SpecKind::vectors, d::length, "polygon: the corners [[x, y], ...], counter-clockwise, relative to position"));
+  element.keys.push_back(many("size", SpecKind::vector, d::length, "polygon: a rectangle [width, height] centred on position"));
   element.keys.push_back(sub("preload", SpecKind::table, "element.preload", "a static rigid rotation before the first step"));
-  TableSpec lattice{"lattice", "columns × rows elements.", element_keys(true)};
+  TableSpec lattice{"lattice", "columns × rows elements.", element_keys(false)};
   lattice.keys.push_back(need(many("origin", SpecKind::vector, d::length, "the centre of the first element")));
   lattice.keys.push_back(need(whole("columns", "elements along the lattice x axis", 1, 100000)));
   lattice.keys.push_back(need(whole("rows", "elements along the lattice y axis", 1, 100000)));
   lattice.keys.push_back(q("spacing", {d::length}, "the centre distance (default 2r)"));
   lattice.keys.push_back(q("rotation", {d::angle}, "the rotation of the lattice axes", "0 deg"));
   lattice.keys.push_back(flag("bonded", "the elements form one bonded group", true));
+  lattice.keys.push_back(many("size", SpecKind::vector, d::length, "polygon: each rectangle [width, height] (they lie side by side)"));
   TableSpec row{"row", "count elements from start along step.", element_keys(true)};
   row.keys.push_back(need(many("start", SpecKind::vector, d::length, "the first centre")));
   row.keys.push_back(need(many("step", SpecKind::vector, d::length, "from one centre to the next")));

@@ -111,6 +111,14 @@ ojson table_schema(const TableSpec& t) {
   out["properties"] = std::move(props);
   if (!required.empty()) out["required"] = std::move(required);
   out["additionalProperties"] = false;
+  // a table that takes polygons ([[element]], [[lattice]]): the radius unless shape = "polygon"
+  const KeySpec* shape = t.find("shape");
+  if (shape && t.find("radius") && !t.find("radius")->required &&
+      std::find(shape->choices.begin(), shape->choices.end(), "polygon") != shape->choices.end() &&
+      (t.path == "element" || t.path == "lattice")) {
+    out["if"] = {{"properties", {{"shape", {{"const", "polygon"}}}}}, {"required", ojson::array({"shape"})}};
+    out["else"] = {{"required", ojson::array({"radius"})}};
+  }
   return out;
 }
 

@@ -7,7 +7,8 @@
 
 namespace dem {
 
-enum class Shape : std::uint8_t { disk, pre };          // PRE: pseudo-rectangle element (docs/model.md §2)
+enum class Shape : std::uint8_t { disk, pre, polygon };  // PRE: pseudo-rectangle element (docs/model.md §2);
+                                                        // polygon: rigid convex polygon (docs/model.md §5)
 enum class Motion : std::uint8_t { free, fixed, driven };  // driven: prescribed velocity
 
 struct Elements {

@@ -9,6 +9,7 @@
 #include "dem/core/base_friction.hpp"
 #include "dem/core/discharge.hpp"
 #include "dem/core/elements.hpp"
+#include "dem/core/polygon.hpp"
 #include "dem/contact/face_contact.hpp"
 #include "dem/contact/linear_contact.hpp"
 #include "dem/contact/rolling_resistance.hpp"
@@ -87,6 +88,10 @@ struct Model {
   std::vector<PairLaw> laws;
   std::vector<std::int32_t> law_of_pair;  // materials.size()² entries, index into laws or −1
   Elements elements;
+  // Polygon elements (docs/model.md §5): their shapes, and per element the index of its shape (−1 for a disk
+  // or a PRE). Empty while the model has no polygon.
+  std::vector<PolygonShape> polygons;
+  std::vector<std::int32_t> polygon_of;
   std::vector<Wall> walls;
   std::vector<VelocityHistory> drives;
   Vec2 gravity;             // [m/s²]
@@ -107,5 +112,20 @@ enum class PreMass : std::uint8_t { square, disk };
 std::size_t add_element(Model& m, Shape shape, std::int32_t material, double radius, Vec2 position,
                         Vec2 velocity = {}, double omega = 0.0, PreMass pre_mass = PreMass::square,
                         double mass_override = 0.0);
+
+/// Adds a rigid convex polygon element (docs/model.md §5): `vertices` counter-clockwise, relative to
+/// `position` (any origin); the element's centre is their centroid (P1), its mass ρ A l and inertia ρ l J_c
+/// (P2), or mass_override with the inertia of that mass in the same shape. Throws std::invalid_argument if
+/// the vertices are not a convex polygon (polygon_problem). Returns its index.
+std::size_t add_polygon(Model& m, std::int32_t material, const std::vector<Vec2>& vertices, Vec2 position,
+                        Vec2 velocity = {}, double omega = 0.0, double mass_override = 0.0);
+
+/// The corners of polygon element i in the world frame (P3), counter-clockwise.
+std::vector<Vec2> element_corners(const Model& m, std::size_t i);
+
+/// How deep elements i and j overlap (the largest penetration of their contact points, P5–P7, for a polygon;
+/// r_i + r_j − D for two circles), and how deep element i overlaps wall w (≤ 0: apart).
+double element_overlap(const Model& m, std::size_t i, std::size_t j);
+double wall_overlap(const Model& m, std::size_t i, const Wall& w);
 
 }  // namespace dem

@@ -97,6 +97,7 @@ Energies Simulation::energies() const {
     en.potential += energy_chunks_[c].potential;
   }
   for (std::size_t c = element_chunks; c < chunks; ++c) en.elastic += energy_chunks_[c].elastic;
+  if (polygons_) en.elastic += polygon_elastic_energy();  // (one thread: the sum is the same for any thread count)
   return en;
 }
 
@@ -126,6 +127,7 @@ std::vector<ContactView> Simulation::contacts() const {
     if (s.touching) out.push_back({s.i, s.j, true, s.nx, s.ny, s.f.fn, s.f.fs, 1, s.rolling.m});
   for (const auto& s : face_walls_)
     if (s.touching) out.push_back({s.i, s.j, true, s.nx, s.ny, s.f.p, s.f.q, s.f.links});
+  polygon_contacts(out);  // one per contact point of a polygon
   return out;
 }
 
@@ -149,6 +151,18 @@ Simulation::BandForce Simulation::wall_band_force(std::uint32_t w, double s0, do
   };
   for (const auto& c : linear_walls_) add(c.i, c.j, c.touching, c.nx, c.ny, c.f.fn, c.f.fs);
   for (const auto& c : face_walls_) add(c.i, c.j, c.touching, c.nx, c.ny, c.f.p, c.f.q);
+  for (const PolygonSlot& p : polygon_walls_) {  // each contact point of a polygon where it touches (P6)
+    if (p.j != w) continue;
+    for (const CornerSlot& c : p.corners) {
+      const Vec2 n{c.nx, c.ny}, t{-c.ny, c.nx};
+      const double s = len > 0.0 ? dot(closest_point(wall, Vec2{c.px, c.py}) - wall.a, along) : 0.0;
+      if (s < s0 || s >= s1) continue;
+      out.normal += c.f.fn;
+      out.max_normal = std::max(out.max_normal, c.f.fn);
+      out.tangential += dot(n * c.f.fn + t * c.f.fs, along);
+      ++out.contacts;
+    }
+  }
   return out;
 }
 
@@ -158,6 +172,8 @@ std::size_t Simulation::contact_count() const {
   for (const auto& s : face_pairs_) n += s.touching;
   for (const auto& s : linear_walls_) n += s.touching;
   for (const auto& s : face_walls_) n += s.touching;
+  for (const auto* list : {&polygon_pairs_, &polygon_walls_})
+    for (const PolygonSlot& s : *list) n += s.corners.size();  // each contact point of a polygon
   return n;
 }
 
@@ -175,6 +191,9 @@ std::pair<double, std::size_t> Simulation::contact_force_sum() const {
   for (const auto& s : linear_walls_) add(s.touching, s.f.fn, s.f.fs);
   for (const auto& s : face_pairs_) add(s.touching, s.f.p, s.f.q);
   for (const auto& s : face_walls_) add(s.touching, s.f.p, s.f.q);
+  for (const auto* list : {&polygon_pairs_, &polygon_walls_})
+    for (const PolygonSlot& s : *list)
+      for (const CornerSlot& c : s.corners) add(true, c.f.fn, c.f.fs);
   return {sum, n};
 }
 
@@ -200,6 +219,15 @@ ContactView Simulation::contact(std::uint32_t i, std::uint32_t j, bool wall) con
   }
   if (const auto* s = find(wall ? face_walls_ : face_pairs_))
     return {i, j, wall, s->nx, s->ny, s->f.p, s->f.q, s->f.links};
+  if (const PolygonSlot* p = polygons_ ? polygon_slot(i, j, wall) : nullptr) {
+    // a polygon's contact points together: the sums of their normal and shear forces, each in its own
+    // frame, and the normal of the first point (from i towards j)
+    ContactView v{i, j, wall, 0.0, 0.0, 0.0, 0.0, static_cast<int>(p->corners.size())};
+    const double sign = p->swapped ? -1.0 : 1.0;
+    v.nx = sign * p->corners[0].nx, v.ny = sign * p->corners[0].ny;
+    for (const CornerSlot& c : p->corners) v.fn += c.f.fn, v.fs += c.f.fs;
+    return v;
+  }
   return {i, j, wall, 0.0, 0.0, 0.0, 0.0, 0};
 }
 

@@ -227,7 +227,7 @@ void Simulation::wall_candidates(std::uint32_t b, std::uint32_t end, std::vector
                                  std::vector<FaceSlot>& face) const {
   const Elements& e = m_.elements;
   for (std::uint32_t i = b; i < end; ++i) {
-    if (!e.active[i]) continue;
+    if (!e.active[i] || e.shape[i] == Shape::polygon) continue;  // (polygons: rebuild_polygons)
     const Vec2 c{e.x[i], e.y[i]};
     for (std::uint32_t k = 0; k < m_.walls.size(); ++k) {
       const Wall& w = m_.walls[k];
@@ -314,6 +314,7 @@ bool Simulation::rebuild_on(const Team& team) {
     return [this, &e, kind](const CandidatePair& p, auto& s) {
       const std::int32_t law = m_.law_index(e.material[p.i], e.material[p.j]);
       if (law < 0 || m_.laws[static_cast<std::size_t>(law)].kind != kind) return false;
+      if (polygons_ && (e.shape[p.i] == Shape::polygon || e.shape[p.j] == Shape::polygon)) return false;
       s = {};
       s.i = p.i, s.j = p.j, s.law = law;
       return true;
@@ -355,6 +356,7 @@ bool Simulation::rebuild_on(const Team& team) {
   }
   if (t == 0) index_.build_linear(e.size(), linear_pairs_.pair);
   if (t == other) index_others();
+  if (t == 0 && polygons_) rebuild_polygons();  // (one thread: threads_asked)
   team.sync();
   return true;
 }

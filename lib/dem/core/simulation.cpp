@@ -39,6 +39,7 @@ Simulation::Simulation(Model model) : m_(std::move(model)) {
   for (Wall& wl : m_.walls)
     wl.increment = wl.drive >= 0 ? m_.drives[static_cast<std::size_t>(wl.drive)].at(0.0) * m_.numerics.dt
                                  : Vec2{};
+  check_polygon_model();
   for (const PairLaw& law : m_.laws) linear_pairs_.with_rolling = linear_pairs_.with_rolling || law.rolling.enabled;
   rebuild();
   if (!m_.preloads.empty()) apply_preloads();
@@ -73,6 +74,8 @@ void Simulation::apply_preloads() {
   preloading_ = true;
   if (threads_used() == 1) {
     sweep_scatter(0.0);  // onto the forces the elements hold
+    sum_wall_forces();
+    sweep_polygons(0.0);
   } else {
     if (shares_.threads != threads_used()) share_work(threads_used());
     WorkerThreads& pool = workers(threads_used());
@@ -83,8 +86,8 @@ void Simulation::apply_preloads() {
       gather_shared(static_cast<std::size_t>(t), false);
     };
     pool.run(body);
+    sum_wall_forces();
   }
-  sum_wall_forces();
   preloading_ = false;
   for (std::size_t k = 0; k < m_.walls.size(); ++k) m_.walls[k].increment = wall_inc[k];
   e.dx = keep_dx;
@@ -97,11 +100,13 @@ void Simulation::open_wall(std::uint32_t w) {
   m_.walls[w].open = true;
   std::erase_if(linear_walls_, [w](const LinearSlot& s) { return s.j == w; });
   std::erase_if(face_walls_, [w](const FaceSlot& s) { return s.j == w; });
+  std::erase_if(polygon_walls_, [w](const PolygonSlot& s) { return s.j == w; });
   tested_step_ = -1;
   index_contacts();  // the slot lists changed
 }
 
 int Simulation::threads_asked() const {
+  if (polygons_) return 1;  // polygon contacts are swept on one thread (polygon_sweep.cpp)
   const std::size_t most = std::max<std::size_t>(1, m_.elements.size() / min_per_thread_);
   return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads_), most));
 }
@@ -167,6 +172,7 @@ void Simulation::step() {
     std::fill(e.moment.begin(), e.moment.end(), 0.0);
     sweep_scatter(inv_dt);
     sum_wall_forces();
+    sweep_polygons(inv_dt);  // (P5–P8): after the other sweeps, as in the reference step
     const double t1 = timings_.on ? phase_clock() : 0.0;
     if (!plate) {
       range_tests_.assign(1, RangeTests{});

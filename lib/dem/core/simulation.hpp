@@ -11,8 +11,10 @@
 
 #include "dem/contact/contact_slots.hpp"
 #include "dem/core/contact_index.hpp"
+#include "dem/core/corner_contacts.hpp"
 #include "dem/core/model.hpp"
 #include "dem/core/neighbour_search.hpp"
+#include "dem/core/polygon_slots.hpp"
 #include "dem/core/spatial_order.hpp"
 #include "dem/core/stability.hpp"
 #include "dem/core/thread_governor.hpp"
@@ -44,6 +46,8 @@ struct ContactView {
   double fn, fs;   // normal (compression positive) and shear force [N]
   int links;       // linked segments (1 for a linear contact)
   double mr = 0.0; // rolling moment on i (R6) [N·m]; on j the opposite; 0 without rolling
+  bool at_point = false;     // a polygon's contact point (P5–P7): where it acts
+  double px = 0.0, py = 0.0;  // [m]
 };
 
 /// The dashpots of a linear contact between masses m_i and m_j (m_j <= 0: a wall): explicit, or from
@@ -323,6 +327,20 @@ class Simulation {
   void reference_face_pair(std::size_t k, double inv_dt);
   void reference_linear_wall(std::size_t k, double inv_dt);
   void reference_face_wall(std::size_t k, double inv_dt);
+  // Polygon elements (polygon_sweep.cpp, docs/model.md §5): a model with polygons steps on one thread.
+  void check_polygon_model();  // sets polygons_; throws std::invalid_argument on what they do not support
+  void rebuild_polygons();     // their slots from the candidates and the walls, histories kept
+  void sweep_polygons(double inv_dt);  // (P5–P8) and (K6–K14) at every contact point; after the other sweeps
+  void advance_corners(PolygonSlot& s, std::uint32_t a, std::uint32_t b, bool wall, double inv_dt);
+  void world_corners(std::uint32_t i, std::vector<Vec2>& out) const;  // (P3)
+  double polygon_elastic_energy() const;
+  void polygon_contacts(std::vector<ContactView>& out) const;
+  const PolygonSlot* polygon_slot(std::uint32_t i, std::uint32_t j, bool wall) const;  // touching, or nullptr
+  bool polygons_ = false;
+  std::vector<PolygonSlot> polygon_pairs_, polygon_walls_;  // sorted by (i, j)
+  std::vector<CornerHit> hits_;                             // sweep scratch
+  std::vector<CornerSlot> corner_scratch_;
+  std::vector<Vec2> corners_a_, corners_b_;
 
   Model m_;
   NeighbourSearch search_;

@@ -767,7 +767,8 @@ ExtraRates extra_rates(const Elements& e, const std::vector<StabilityTerm>& extr
 
 }  // namespace
 
-StabilityBound assembly_stability_bound(const Model& m, const std::vector<StabilityTerm>& extra) {
+/// The bound of a model of disks and PREs (a model with polygons: polygon_stability.cpp).
+static StabilityBound disk_and_pre_bound(const Model& m, const std::vector<StabilityTerm>& extra) {
   const Elements& e = m.elements;
   const std::size_t nm = m.materials.size();
   const std::vector<Stats> st = material_stats(e, nm);
@@ -916,6 +917,12 @@ StabilityBound assembly_stability_bound(const Model& m, const std::vector<Stabil
   out.limit_gershgorin = out.limit, out.limit_gershgorin_sticking = out.limit_sticking;
   if (net.any_bond) apply_bonded_bounds(m, net, st, info, unbonded, out);
   return out;
+}
+
+StabilityBound assembly_stability_bound(const Model& m, const std::vector<StabilityTerm>& extra) {
+  const std::vector<Shape>& shape = m.elements.shape;
+  if (std::find(shape.begin(), shape.end(), Shape::polygon) != shape.end()) return polygon_stability_bound(m, extra);
+  return disk_and_pre_bound(m, extra);
 }
 
 }  // namespace dem

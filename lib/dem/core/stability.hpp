@@ -70,4 +70,8 @@ struct StabilityBound {
 /// assumptions). `extra`: terms from other physics (registered_stability_terms).
 StabilityBound assembly_stability_bound(const Model& m, const std::vector<StabilityTerm>& extra);
 
+/// The same for a model with polygon elements (polygon_stability.cpp, docs/model.md (P9)); the assembly bound
+/// hands such a model to it.
+StabilityBound polygon_stability_bound(const Model& m, const std::vector<StabilityTerm>& extra);
+
 }  // namespace dem

@@ -20,6 +20,14 @@ std::vector<Simulation::WallContactForce> Simulation::wall_contact_forces(std::u
   };
   for (const auto& c : linear_walls_) add(c.i, c.j, c.touching, c.nx, c.ny, c.f.fn, c.f.fs);
   for (const auto& c : face_walls_) add(c.i, c.j, c.touching, c.nx, c.ny, c.f.p, c.f.q);
+  for (const PolygonSlot& p : polygon_walls_) {  // a polygon's contact points, each where it is (P6)
+    if (p.j != w) continue;
+    for (const CornerSlot& c : p.corners) {
+      const Vec2 n{c.nx, c.ny}, t{-c.ny, c.nx}, point = closest_point(wall, Vec2{c.px, c.py});
+      const double s = len > 0.0 ? dot(point - wall.a, along) : 0.0;
+      out.push_back({s, point, c.f.fn, dot(n * c.f.fn + t * c.f.fs, along)});
+    }
+  }
   return out;
 }
 

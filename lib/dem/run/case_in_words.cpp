@@ -49,7 +49,7 @@ std::string limit_in_words(const Model& m, const StabilityBound& b, double limit
       "the fastest mode of element {} (a {} of radius {:.4g} m, mass {:.4g} kg, material {}) pressed by {} element "
       "and {} wall contact(s) through {} at once, in the worst arrangement of their directions: "
       "stiffness rate lambda = {:.4g} 1/s^2 (omega = {:.4g} rad/s), damping rate c = {:.4g} 1/s; ",
-      b.element, e.shape[i] == Shape::disk ? "disk" : "PRE", e.radius[i], e.mass[i],
+      b.element, e.shape[i] == Shape::disk ? "disk" : e.shape[i] == Shape::pre ? "PRE" : "polygon (circumradius)", e.radius[i], e.mass[i],
       m.materials[static_cast<std::size_t>(e.material[i])].name, b.element_contacts, b.wall_contacts,
       b.law.empty() ? std::string("no contact") : b.law, b.stiffness_rate, std::sqrt(b.stiffness_rate), b.damping_rate);
   const double lam = b.stiffness_rate, c = b.damping_rate;

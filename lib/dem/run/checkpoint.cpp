@@ -209,6 +209,19 @@ struct SimulationAccess {
     w.put_vec(sim.wall_ref_);
     w.put(sim.skin_), w.put(sim.time_), w.put(sim.step_), w.put(sim.rebuilds_), w.put(sim.preloading_);
     w.put(sim.plate_travel_.displacement), w.put(sim.plate_travel_.travel);  // version 5: base plate travel (M21)
+    // Polygon elements (docs/model.md §5): their contact points, so that states compare in full (tests); run
+    // refuses checkpoints of such a case, and a restore reads no such part (no checkpoint holds one).
+    if (sim.polygons_)
+      for (const auto* list : {&sim.polygon_pairs_, &sim.polygon_walls_}) {
+        w.put<std::uint64_t>(list->size());
+        for (const PolygonSlot& p : *list) {
+          w.put(p.i), w.put(p.j), w.put(p.law), w.put(p.swapped);
+          w.put<std::uint64_t>(p.corners.size());
+          for (const CornerSlot& c : p.corners)
+            w.put(c.side), w.put(c.corner), w.put(c.eta_n), w.put(c.eta_s), w.put(c.h.en), w.put(c.h.es), w.put(c.f.fn),
+                w.put(c.f.fs), w.put(c.px), w.put(c.py), w.put(c.nx), w.put(c.ny);
+        }
+      }
     return w.out;
   }
 

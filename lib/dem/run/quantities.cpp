@@ -65,7 +65,8 @@ QuantityFn element_quantity(const std::string& name, std::size_t u, const std::v
     if (f == "fy") return [u](const Simulation& s) { return s.model().elements.fy[s.index_of(u)]; };
     if (f == "moment") return [u](const Simulation& s) { return s.model().elements.moment[s.index_of(u)]; };
     // px(a,b), py(a,b): a body point at the offset (a r, b r) in the element's own frame, e.g. the
-    // corner (1,-1) of a PRE's square
+    // corner (1,-1) of a PRE's square; for a polygon (a w/2, b h/2), with w × h the box of its corners in its
+    // own frame about the centroid (the corner (1,-1) of a rectangle)
     if ((f.rfind("px(", 0) == 0 || f.rfind("py(", 0) == 0) && f.back() == ')') {
       const auto comma = f.find(',');
       if (comma == std::string::npos) throw bad("expected px(a,b) or py(a,b)");
@@ -81,7 +82,13 @@ QuantityFn element_quantity(const std::string& name, std::size_t u, const std::v
         const Elements& e = s.model().elements;
         const std::size_t u = s.index_of(id);
         const double c = std::cos(e.phi[u]), sn = std::sin(e.phi[u]), r = e.radius[u];
-        return want_x ? e.x[u] + r * (c * a - sn * b) : e.y[u] + r * (sn * a + c * b);
+        double ra = r, rb = r;
+        if (e.shape[u] == Shape::polygon) {
+          ra = rb = 0.0;
+          for (const Vec2& v : s.model().polygons[static_cast<std::size_t>(s.model().polygon_of[u])].vertices)
+            ra = std::max(ra, std::abs(v.x)), rb = std::max(rb, std::abs(v.y));
+        }
+        return want_x ? e.x[u] + (c * a * ra - sn * b * rb) : e.y[u] + (sn * a * ra + c * b * rb);
       };
     }
     throw bad("unknown element field (x, y, phi, vx, vy, omega, fx, fy, moment, px(a,b), py(a,b), gap.<other>, fn.<other>, fs.<other>)");

@@ -133,11 +133,11 @@ nlohmann::json resolved_case_si(const Case& c) {
   const Numerics& n = m.numerics;
   const Elements& e = m.elements;
   double rmin = std::numeric_limits<double>::infinity(), rmax = 0.0;
-  std::size_t disks = 0, pres = 0, active = 0;
+  std::size_t disks = 0, pres = 0, polygons = 0, active = 0;
   for (std::size_t i = 0; i < e.size(); ++i) {
     rmin = std::min(rmin, e.radius[i]);
     rmax = std::max(rmax, e.radius[i]);
-    (e.shape[i] == Shape::disk ? disks : pres) += 1;
+    (e.shape[i] == Shape::disk ? disks : e.shape[i] == Shape::pre ? pres : polygons) += 1;
     active += e.active[i];
   }
   j["numerics"] = {{"integrator", name_of(n.integrator)},
@@ -167,6 +167,7 @@ nlohmann::json resolved_case_si(const Case& c) {
   j["contacts"] = laws;
   j["elements"] = {{"count", e.size()}, {"active", active}, {"disks", disks}, {"pres", pres},
                    {"radius_min", e.size() ? rmin : 0.0}, {"radius_max", rmax}, {"total_mass", total_mass(m)}};
+  if (polygons > 0) j["elements"]["polygons"] = polygons;  // (radius: a polygon's circumradius)
   nlohmann::json walls = nlohmann::json::array();
   for (const Wall& w : m.walls) {
     nlohmann::json wj = {{"name", w.name}, {"kind", w.kind == WallKind::point ? "point" : "segment"},

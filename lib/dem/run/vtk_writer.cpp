@@ -52,17 +52,28 @@ struct Appended {
   }
 };
 
+/// The outline of a PRE (the square of side 2r turned by φ) or a polygon (its corners, P3), counter-clockwise.
+std::vector<Vec2> outline(const Model& m, std::size_t i) {
+  const Elements& e = m.elements;
+  if (e.shape[i] == Shape::polygon) return element_corners(m, i);
+  const double cs = std::cos(e.phi[i]), sn = std::sin(e.phi[i]), r = e.radius[i];
+  std::vector<Vec2> out;
+  for (const auto& [u, v] : {std::pair{r, -r}, std::pair{r, r}, std::pair{-r, r}, std::pair{-r, -r}})
+    out.push_back({e.x[i] + cs * u - sn * v, e.y[i] + sn * u + cs * v});
+  return out;
+}
+
 }  // namespace
 
 void write_vtp(const std::filesystem::path& file, const Simulation& sim) {
   const Elements& e = sim.model().elements;
   const std::vector<Wall>& walls = sim.model().walls;
   const auto contacts = contacts_in_id_order(sim);  // as without spatial reordering (spatial_order.hpp)
-  std::vector<std::size_t> ids, pres;  // active elements; active PREs (indices, in the order of their ids)
+  std::vector<std::size_t> ids, pres;  // active elements; active PREs and polygons (indices, in the order of their ids)
   for (std::size_t id = 0; id < e.size(); ++id)
     if (const std::size_t i = sim.index_of(static_cast<std::uint32_t>(id)); e.active[i]) {
       ids.push_back(i);
-      if (e.shape[i] == Shape::pre) pres.push_back(i);
+      if (e.shape[i] != Shape::disk) pres.push_back(i);
     }
   std::vector<std::int64_t> point_of(e.size(), -1);
   for (std::size_t k = 0; k < ids.size(); ++k) point_of[ids[k]] = static_cast<std::int64_t>(k);
@@ -72,7 +83,7 @@ void write_vtp(const std::filesystem::path& file, const Simulation& sim) {
   for (const auto& c : contacts)
     if (e.active[c.i] && (c.wall || e.active[c.j])) shown.push_back(&c);
 
-  // Points: element centres | PRE corners (4 each) | wall points (segment: a, b; point: a) | the contact
+  // Points: element centres | PRE corners (4 each), polygon corners | wall points (segment: a, b; point: a) | the contact
   // point r·n of each wall contact. Point data per point kind; zero (or −1 for ids) where it means nothing.
   std::vector<double> xyz, radius, disk_radius, rotation, velocity, force, moment;
   std::vector<std::int64_t> point_element;
@@ -88,12 +99,12 @@ void write_vtp(const std::filesystem::path& file, const Simulation& sim) {
     point_element.push_back(el >= 0 ? static_cast<std::int64_t>(sim.id_of(i)) : el);  // ids, not indices
   };
   for (std::size_t i : ids) point(e.x[i], e.y[i], static_cast<std::int64_t>(i), true);
-  const std::size_t corner0 = ids.size();
-  for (std::size_t i : pres) {  // the square of side 2r turned by φ, corners counter-clockwise
-    const double cs = std::cos(e.phi[i]), sn = std::sin(e.phi[i]), r = e.radius[i];
-    for (const auto& [u, v] : {std::pair{r, -r}, std::pair{r, r}, std::pair{-r, r}, std::pair{-r, -r}})
-      point(e.x[i] + cs * u - sn * v, e.y[i] + sn * u + cs * v, static_cast<std::int64_t>(i));
+  std::vector<std::size_t> corner_first;  // per outlined element: its first corner point
+  for (std::size_t i : pres) {
+    corner_first.push_back(xyz.size() / 3);
+    for (const Vec2& q : outline(sim.model(), i)) point(q.x, q.y, static_cast<std::int64_t>(i));
   }
+  corner_first.push_back(xyz.size() / 3);
   std::vector<std::size_t> wall_point(walls.size());
   for (std::size_t w = 0; w < walls.size(); ++w) {
     wall_point[w] = xyz.size() / 3;
@@ -106,14 +117,15 @@ void write_vtp(const std::filesystem::path& file, const Simulation& sim) {
     if (c->wall) {
       contact_b.push_back(static_cast<std::int64_t>(xyz.size() / 3));
       const double r = e.radius[c->i];
-      point(e.x[c->i] + r * c->nx, e.y[c->i] + r * c->ny, -1);
+      if (c->at_point) point(c->px, c->py, -1);  // a polygon's contact point
+      else point(e.x[c->i] + r * c->nx, e.y[c->i] + r * c->ny, -1);
     } else {
       contact_b.push_back(point_of[c->j]);
     }
   }
   const std::size_t n_points = xyz.size() / 3;
 
-  // Cells in VTK's order: verts (elements, point walls), lines (segment walls, contacts), polys (PREs).
+  // Cells in VTK's order: verts (elements, point walls), lines (segment walls, contacts), polys (PREs, polygons).
   std::vector<std::int64_t> vert_conn, vert_off, line_conn, line_off, poly_conn, poly_off;
   std::vector<std::int32_t> kind, links;
   std::vector<std::int64_t> cell_element, cell_other, cell_wall;
@@ -148,7 +160,7 @@ void write_vtp(const std::filesystem::path& file, const Simulation& sim) {
   }
   for (std::size_t k = 0; k < pres.size(); ++k) {
     const std::size_t i = pres[k];
-    for (std::size_t q = 0; q < 4; ++q) poly_conn.push_back(static_cast<std::int64_t>(corner0 + 4 * k + q));
+    for (std::size_t q = corner_first[k]; q < corner_first[k + 1]; ++q) poly_conn.push_back(static_cast<std::int64_t>(q));
     poly_off.push_back(static_cast<std::int64_t>(poly_conn.size()));
     cell(4, static_cast<std::int64_t>(i), -1, -1, 0.0, 0.0, e.fx[i], e.fy[i], 0);
   }

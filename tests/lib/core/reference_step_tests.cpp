@@ -7,7 +7,8 @@
 //
 // What the oracle covers: disks and PREs, linear and face laws, element and wall contacts, bonded faces,
 // preloads (the constructor's static step, shared by both), a driven element and a driven wall, the base plate
-// (M21), both integrators and the staggered start, spatial reordering, rolling resistance (R1–R6). What it does not: a silo's
+// (M21), both integrators and the staggered start, spatial reordering, rolling resistance (R1–R6), polygon elements
+// (P5–P8: both call the one polygon sweep, after the other contacts). What it does not: a silo's
 // discharge (the outlet and the keystone are run.cpp's, between steps; a filled silo is covered), and the
 // blow-up test (the reference makes none).
 #include <catch2/catch.hpp>
@@ -55,6 +56,14 @@ const std::vector<OracleCase> kCases = {
      {"contact.0.rolling={ friction = 0.3, stiffness_factor = 2.25, damping_ratio = 0.5 }",
       "contact.1.rolling={ friction = 0.2, stiffness_factor = 1.0, damping_ratio = 0.4 }"},
      3000},
+    {"a polygon block rocking onto its other corner (polygon–wall contact points, P6)", "cases/polygon/rocking_block.toml",
+     {"numerics.dt=2e-4", "contact.0.kn=1e6"}, 900},
+    {"two polygon blocks colliding corner first, with friction and dashpots (P5)", "cases/polygon/collision.toml",
+     {"element.1.rotation=30 deg", "element.1.position=[\"60 mm\", \"5 mm\"]", "contact.0.friction=0.4",
+      "contact.0.damping_ratio=0.1", "numerics.dt=1e-6"},
+     1500},
+    {"a block of six polygon rectangles settling on a floor, corners on corners, a pentagon above (P5, P6)",
+     "tests/lib/fixtures/schema/polygons.toml", {}, 3000},
 };
 
 }  // namespace

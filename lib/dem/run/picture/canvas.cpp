@@ -131,31 +131,37 @@ void Canvas::ring(double cx, double cy, double r, double width, Rgb c) {
 }
 
 void Canvas::polygon(const std::array<double, 8>& xy, Rgb fill, Rgb edge, double edge_width) {
+  polygon(std::vector<double>(xy.begin(), xy.end()), fill, edge, edge_width);
+}
+
+void Canvas::polygon(const std::vector<double>& xy, Rgb fill, Rgb edge, double edge_width) {
   // Fill: coverage from the signed distance to the convex outline (inside: every edge on one side).
+  const int nc = static_cast<int>(xy.size() / 2);
+  if (nc < 3) return;
   double xmin = xy[0], xmax = xy[0], ymin = xy[1], ymax = xy[1];
-  for (int k = 1; k < 4; ++k) {
+  for (int k = 1; k < nc; ++k) {
     xmin = std::min(xmin, xy[2 * k]), xmax = std::max(xmax, xy[2 * k]);
     ymin = std::min(ymin, xy[2 * k + 1]), ymax = std::max(ymax, xy[2 * k + 1]);
   }
   double area2 = 0.0;  // orientation of the corners
-  for (int k = 0; k < 4; ++k) {
-    const int n = (k + 1) % 4;
+  for (int k = 0; k < nc; ++k) {
+    const int n = (k + 1) % nc;
     area2 += xy[2 * k] * xy[2 * n + 1] - xy[2 * n] * xy[2 * k + 1];
   }
   const double sign = area2 >= 0.0 ? 1.0 : -1.0;
   for (int j = std::max(static_cast<int>(ymin) - 1, 0); j <= std::min(static_cast<int>(ymax) + 1, h_ - 1); ++j)
     for (int i = std::max(static_cast<int>(xmin) - 1, 0); i <= std::min(static_cast<int>(xmax) + 1, w_ - 1); ++i) {
       double inside = 1e300;  // distance to the nearest edge line, negative outside
-      for (int k = 0; k < 4; ++k) {
-        const int n = (k + 1) % 4;
+      for (int k = 0; k < nc; ++k) {
+        const int n = (k + 1) % nc;
         const double ex = xy[2 * n] - xy[2 * k], ey = xy[2 * n + 1] - xy[2 * k + 1], len = std::hypot(ex, ey);
         if (len == 0.0) continue;
         inside = std::min(inside, sign * (ex * (j + 0.5 - xy[2 * k + 1]) - ey * (i + 0.5 - xy[2 * k])) / len);
       }
       blend(i, j, fill, clamp01(inside + 0.5));
     }
-  for (int k = 0; k < 4; ++k) {
-    const int n = (k + 1) % 4;
+  for (int k = 0; k < nc; ++k) {
+    const int n = (k + 1) % nc;
     line(xy[2 * k], xy[2 * k + 1], xy[2 * n], xy[2 * n + 1], edge_width, edge);
   }
 }

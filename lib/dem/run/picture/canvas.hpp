@@ -30,6 +30,8 @@ class Canvas {
   void ring(double cx, double cy, double r, double width, Rgb c);
   /// A filled convex polygon (corners in order) and its outline.
   void polygon(const std::array<double, 8>& xy, Rgb fill, Rgb edge, double edge_width);
+  /// The same for any convex outline, corners (x0, y0, x1, y1, …) in either order.
+  void polygon(const std::vector<double>& xy, Rgb fill, Rgb edge, double edge_width);
   /// Text in the 5 × 7 font scaled by `scale` (integer pixels per font pixel), top-left at (x, y).
   /// Characters outside the font draw as a box. Returns the x after the text.
   int text(int x, int y, std::string_view s, int scale, Rgb c);

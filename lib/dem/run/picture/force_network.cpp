@@ -36,7 +36,7 @@ PictureFrame picture_frame(const Simulation& sim, const PictureOptions& o) {
   const Elements& e = sim.model().elements;
   Box el, all;
   for (std::size_t i = 0; i < e.size(); ++i)
-    if (e.active[i]) el.add(e.x[i], e.y[i], e.shape[i] == Shape::pre ? e.radius[i] * std::sqrt(2.0) : e.radius[i]);
+    if (e.active[i]) el.add(e.x[i], e.y[i], e.shape[i] == Shape::pre ? e.radius[i] * std::sqrt(2.0) : e.radius[i]);  // (polygon: circumradius)
   Box walls;
   for (const Wall& w : sim.model().walls) {
     walls.add(w.a.x, w.a.y);
@@ -112,6 +112,13 @@ ForcePicture draw_force_network(const Simulation& sim, const PictureOptions& o) 
         xy[2 * k] = p.x, xy[2 * k + 1] = p.y;
       }
       cv.polygon(xy, kElementFill, kElementEdge, 1.0);
+    } else if (e.shape[i] == Shape::polygon) {  // its corners (P3)
+      std::vector<double> xy;
+      for (const Vec2& q : element_corners(sim.model(), i)) {
+        const Vec2 p = f.to_px(q);
+        xy.push_back(p.x), xy.push_back(p.y);
+      }
+      cv.polygon(xy, kElementFill, kElementEdge, 1.0);
     } else {
       cv.disk(c.x, c.y, r, kElementFill);
       cv.ring(c.x, c.y, r - 0.5, 1.0, kElementEdge);
@@ -134,7 +141,7 @@ ForcePicture draw_force_network(const Simulation& sim, const PictureOptions& o) 
     if (!(max_force > 0.0) || c.fn == 0.0) continue;
     const double width = max_line * std::min(std::abs(c.fn) / max_force, 1.5);
     const Vec2 a = f.to_px({e.x[c.i], e.y[c.i]});
-    Vec2 b = c.wall ? f.to_px({e.x[c.i] + e.radius[c.i] * c.nx, e.y[c.i] + e.radius[c.i] * c.ny})
+    Vec2 b = c.wall ? (c.at_point ? f.to_px({c.px, c.py}) : f.to_px({e.x[c.i] + e.radius[c.i] * c.nx, e.y[c.i] + e.radius[c.i] * c.ny}))
                     : f.to_px({e.x[c.j], e.y[c.j]});
     if (c.wall) {  // the round cap ends on the wall, not beyond it
       const double len = std::hypot(b.x - a.x, b.y - a.y), back = std::min(0.5 * width, 0.5 * len);
