@@ -39,3 +39,17 @@ def test_rolling_moment_of_a_disk_rolling_to_rest(root):
     assert abs(r.series["e0.mr.floor [N*m]"].iloc[-1] / cap - 1) < 1e-9
     flat = dem2d.run(dem2d.load_case(root / "cases/basic/rest_on_wall.toml", sets={"output.contacts": True}))
     assert (flat.contacts["mr [N*m]"] == 0.0).all()
+
+
+def test_contact_points_of_a_polygon_block(root):
+    """A polygon block (docs/model.md §5) on the slope of Matsui's Table 1: contacts.csv has one row per
+    contact point, its two base corners, pressed together by m g cos α, both with the slope's normal."""
+    r = dem2d.run(dem2d.load_case(root / "cases/polygon/block_on_slope.toml",
+                                  sets={"output.contacts": True, "numerics.duration": "0.01 s"}))
+    last = r.contacts[r.contacts["step"] == r.steps]
+    assert len(last) == 2
+    assert set(last["i"]) == {0} and set(last["wall"]) == {"slope"} and set(last["law"]) == {"linear"}
+    weight = 0.0671 * 9.80665 * 0.766044443118978  # m g cos 40°
+    assert abs(last["fn [N]"].sum() / weight - 1) < 1e-6
+    assert set(last["ny"]) == {-1.0}
+    assert abs(r.series["e0.fn.slope [N]"].iloc[-1] / weight - 1) < 1e-6  # the two points summed
