@@ -104,6 +104,9 @@ QuantityFn element_quantity(const std::string& name, std::size_t u, const std::v
     if (j < 0 && w < 0) throw bad(fmt::format("\"{}\" is neither an element (e<i>) nor a wall name", p[2]));
     const bool wall = j < 0;
     const auto o = static_cast<std::uint32_t>(wall ? w : j);
+    if (p[1] == "gap" && (m.elements.shape.at(u) == Shape::polygon || (!wall && m.elements.shape.at(o) == Shape::polygon)))
+      throw bad("gap is the distance of centres less the radii, not defined for a polygon element (docs/model.md §5); "
+                "use fn.<other> or links.<other>");
     if (p[1] == "gap")
       return [id = u, other = o, wall](const Simulation& s) {
         const Elements& e = s.model().elements;

@@ -13,6 +13,7 @@
 #include "dem/core/polygon.hpp"
 #include "dem/core/simulation.hpp"
 #include "dem/core/stability.hpp"
+#include "dem/run/quantities.hpp"
 #include "dem/run/run.hpp"
 #include "../test_support.hpp"
 
@@ -429,4 +430,12 @@ TEST_CASE("polygon: checkpoints of a case with polygons are refused, and an inte
   CHECK(r.status == "interrupted");
   CHECK_FALSE(std::filesystem::exists(opt.out_dir / "checkpoint.bin"));
   CHECK(std::filesystem::exists(opt.out_dir / "summary.json"));
+}
+
+TEST_CASE("polygon: e<i>.gap is refused for a polygon, its forces and contact points are not", "[polygon]") {
+  const dem::Model m = read_text(kBlockCase).model;
+  CHECK_THAT(test::message_of<std::invalid_argument>([&] { dem::compile_quantity("e0.gap.floor", m); }),
+             Catch::Contains("not defined for a polygon"));
+  CHECK_NOTHROW(dem::compile_quantity("e0.fn.floor", m));
+  CHECK_NOTHROW(dem::compile_quantity("e0.links.floor", m));
 }
