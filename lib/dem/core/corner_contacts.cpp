@@ -9,10 +9,11 @@ namespace dem {
 EdgeDistance nearest_edge(const std::vector<Vec2>& poly, Vec2 p, Vec2 prefer, double window) {
   const std::size_t n = poly.size();
   double smax = -std::numeric_limits<double>::infinity();
-  for (std::size_t e = 0; e < n; ++e) {
-    const Vec2 a = poly[e], d = poly[(e + 1) % n] - a;
-    smax = std::max(smax, dot(Vec2{d.y, -d.x}, p - a) / norm(d));
-  }
+  if (window > 0.0)  // the largest s first: the window is measured from it
+    for (std::size_t e = 0; e < n; ++e) {
+      const Vec2 a = poly[e], d = poly[(e + 1) % n] - a;
+      smax = std::max(smax, dot(Vec2{d.y, -d.x}, p - a) / norm(d));
+    }
   EdgeDistance best;
   best.s = -std::numeric_limits<double>::infinity();
   double best_turn = -std::numeric_limits<double>::infinity();

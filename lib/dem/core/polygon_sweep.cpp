@@ -105,13 +105,10 @@ void Simulation::advance_corners(PolygonSlot& s, std::uint32_t a, std::uint32_t 
     c.side = hit.side, c.corner = hit.corner;
     // (P8): the step's displacement of each body's material point at the contact point
     const Vec2 ra = hit.point - Vec2{e.x[a], e.y[a]};
+    const Vec2 rb = wall ? Vec2{} : hit.point - Vec2{e.x[b], e.y[b]};
     Vec2 u{e.dx[a] - e.dphi[a] * ra.y, e.dy[a] + e.dphi[a] * ra.x};
-    if (wall) {
-      u = u - wall_step;
-    } else {
-      const Vec2 rb = hit.point - Vec2{e.x[b], e.y[b]};
-      u = u - Vec2{e.dx[b] - e.dphi[b] * rb.y, e.dy[b] + e.dphi[b] * rb.x};
-    }
+    if (wall) u = u - wall_step;
+    else u = u - Vec2{e.dx[b] - e.dphi[b] * rb.y, e.dy[b] + e.dphi[b] * rb.x};
     const Vec2 n = hit.normal, t = perp(n);
     const double du_n = dot(u, n), du_s = dot(u, t);  // (K5.a, K5.b) at the point, approach positive
     if (fresh) start_linear(s.law, hit.depth, du_n, du_s, e.mass[a], wall ? 0.0 : e.mass[b], c.eta_n, c.eta_s, c.h);
@@ -124,7 +121,6 @@ void Simulation::advance_corners(PolygonSlot& s, std::uint32_t a, std::uint32_t 
     if (wall) {
       m_.walls[b].force = m_.walls[b].force - force;
     } else {
-      const Vec2 rb = hit.point - Vec2{e.x[b], e.y[b]};
       e.fx[b] -= force.x, e.fy[b] -= force.y;
       e.moment[b] -= cross(rb, force);
     }
@@ -136,28 +132,28 @@ void Simulation::advance_corners(PolygonSlot& s, std::uint32_t a, std::uint32_t 
 void Simulation::sweep_polygons(double inv_dt) {
   if (!polygons_) return;
   const Elements& e = m_.elements;
+  // every active polygon's corners once per step (P3), whatever number of slots it is in
+  corner_cache_.resize(m_.polygons.size());
+  for (std::uint32_t i = 0; i < e.size(); ++i)
+    if (is_polygon(e, i) && e.active[i]) world_corners(i, corner_cache_[static_cast<std::size_t>(m_.polygon_of[i])]);
+  auto corners = [&](std::uint32_t i) -> const std::vector<Vec2>& {
+    return corner_cache_[static_cast<std::size_t>(m_.polygon_of[i])];
+  };
   for (PolygonSlot& s : polygon_pairs_) {
     const std::uint32_t a = s.swapped ? s.j : s.i, b = s.swapped ? s.i : s.j;
     hits_.clear();
     if (e.active[a] && e.active[b]) {
-      world_corners(a, corners_a_);
-      if (is_polygon(e, b)) {
-        world_corners(b, corners_b_);
-        polygon_pair_hits(corners_a_, corners_b_, hits_);  // (P5)
-      } else {
-        polygon_disk_hits(corners_a_, {e.x[b], e.y[b]}, e.radius[b], hits_);  // (P7)
-      }
+      if (is_polygon(e, b)) polygon_pair_hits(corners(a), corners(b), hits_);               // (P5)
+      else polygon_disk_hits(corners(a), {e.x[b], e.y[b]}, e.radius[b], hits_);  // (P7)
     }
     advance_corners(s, a, b, false, inv_dt);
   }
   for (PolygonSlot& s : polygon_walls_) {
     const Wall& w = m_.walls[s.j];
     hits_.clear();
-    if (e.active[s.i] && !w.open) {
-      world_corners(s.i, corners_a_);
-      polygon_wall_hits(corners_a_, {e.x[s.i], e.y[s.i]}, w.a, w.kind == WallKind::point ? w.a : w.b,
+    if (e.active[s.i] && !w.open)
+      polygon_wall_hits(corners(s.i), {e.x[s.i], e.y[s.i]}, w.a, w.kind == WallKind::point ? w.a : w.b,
                         w.kind == WallKind::point, hits_);  // (P6)
-    }
     advance_corners(s, s.i, s.j, true, inv_dt);
   }
 }

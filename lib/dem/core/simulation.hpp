@@ -340,7 +340,7 @@ class Simulation {
   std::vector<PolygonSlot> polygon_pairs_, polygon_walls_;  // sorted by (i, j)
   std::vector<CornerHit> hits_;                             // sweep scratch
   std::vector<CornerSlot> corner_scratch_;
-  std::vector<Vec2> corners_a_, corners_b_;
+  std::vector<std::vector<Vec2>> corner_cache_;  // per polygon shape: its corners in the world this step
 
   Model m_;
   NeighbourSearch search_;
