@@ -79,12 +79,17 @@ std::size_t add_polygon(Model& m, std::int32_t material, const std::vector<Vec2>
   return i;
 }
 
-std::vector<Vec2> element_corners(const Model& m, std::size_t i) {
+void element_corners(const Model& m, std::size_t i, std::vector<Vec2>& out) {
   const Elements& e = m.elements;
-  const PolygonShape& s = m.polygons.at(static_cast<std::size_t>(m.polygon_of.at(i)));
+  const PolygonShape& s = m.polygons[static_cast<std::size_t>(m.polygon_of[i])];
   const double c = std::cos(e.phi[i]), sn = std::sin(e.phi[i]);
+  out.resize(s.vertices.size());
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = world_vertex(s, k, e.x[i], e.y[i], c, sn);  // (P3)
+}
+
+std::vector<Vec2> element_corners(const Model& m, std::size_t i) {
   std::vector<Vec2> out;
-  for (std::size_t k = 0; k < s.vertices.size(); ++k) out.push_back(world_vertex(s, k, e.x[i], e.y[i], c, sn));
+  element_corners(m, i, out);
   return out;
 }
 

@@ -120,8 +120,9 @@ std::size_t add_element(Model& m, Shape shape, std::int32_t material, double rad
 std::size_t add_polygon(Model& m, std::int32_t material, const std::vector<Vec2>& vertices, Vec2 position,
                         Vec2 velocity = {}, double omega = 0.0, double mass_override = 0.0);
 
-/// The corners of polygon element i in the world frame (P3), counter-clockwise.
+/// The corners of polygon element i in the world frame (P3), counter-clockwise (into `out`, its storage reused).
 std::vector<Vec2> element_corners(const Model& m, std::size_t i);
+void element_corners(const Model& m, std::size_t i, std::vector<Vec2>& out);
 
 /// How deep elements i and j overlap (the largest penetration of their contact points, P5–P7, for a polygon;
 /// r_i + r_j − D for two circles), and how deep element i overlaps wall w (≤ 0: apart).

@@ -52,14 +52,6 @@ void Simulation::check_polygon_model() {
     throw std::invalid_argument("base friction (M21) is not modelled for polygon elements yet");
 }
 
-void Simulation::world_corners(std::uint32_t i, std::vector<Vec2>& out) const {
-  const Elements& e = m_.elements;
-  const PolygonShape& s = m_.polygons[static_cast<std::size_t>(m_.polygon_of[i])];
-  const double c = std::cos(e.phi[i]), sn = std::sin(e.phi[i]);
-  out.resize(s.vertices.size());
-  for (std::size_t k = 0; k < out.size(); ++k) out[k] = world_vertex(s, k, e.x[i], e.y[i], c, sn);  // (P3)
-}
-
 void Simulation::rebuild_polygons() {
   const Elements& e = m_.elements;
   std::vector<PolygonSlot> fresh;
@@ -135,7 +127,7 @@ void Simulation::sweep_polygons(double inv_dt) {
   // every active polygon's corners once per step (P3), whatever number of slots it is in
   corner_cache_.resize(m_.polygons.size());
   for (std::uint32_t i = 0; i < e.size(); ++i)
-    if (is_polygon(e, i) && e.active[i]) world_corners(i, corner_cache_[static_cast<std::size_t>(m_.polygon_of[i])]);
+    if (is_polygon(e, i) && e.active[i]) element_corners(m_, i, corner_cache_[static_cast<std::size_t>(m_.polygon_of[i])]);
   auto corners = [&](std::uint32_t i) -> const std::vector<Vec2>& {
     return corner_cache_[static_cast<std::size_t>(m_.polygon_of[i])];
   };

@@ -332,7 +332,6 @@ class Simulation {
   void rebuild_polygons();     // their slots from the candidates and the walls, histories kept
   void sweep_polygons(double inv_dt);  // (P5–P8) and (K6–K14) at every contact point; after the other sweeps
   void advance_corners(PolygonSlot& s, std::uint32_t a, std::uint32_t b, bool wall, double inv_dt);
-  void world_corners(std::uint32_t i, std::vector<Vec2>& out) const;  // (P3)
   double polygon_elastic_energy() const;
   void polygon_contacts(std::vector<ContactView>& out) const;
   const PolygonSlot* polygon_slot(std::uint32_t i, std::uint32_t j, bool wall) const;  // touching, or nullptr
