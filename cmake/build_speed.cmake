@@ -37,6 +37,12 @@ set(DEM2D_PCH_COMMON <cmath> <filesystem> <string> <vector> <nlohmann/json.hpp> 
 function(dem2d_test_optimisation target)
   if(DEM2D_SANITIZE OR CMAKE_CXX_FLAGS MATCHES "-fsanitize=thread")
     target_compile_options(${target} PRIVATE -O0)
+    # The test files need no libFuzzer coverage (only the fuzz/ targets are fuzzed; the library they link
+    # keeps it): 17–21 % less compile time per test file (docs/toolchain.md "Build time"). ASan and UBSan
+    # stay on.
+    if(DEM2D_FUZZ)
+      target_compile_options(${target} PRIVATE -fno-sanitize=fuzzer-no-link)
+    endif()
   else()
     target_compile_options(${target} PRIVATE $<$<CONFIG:Release>:-O1>)
   endif()

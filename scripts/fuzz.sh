@@ -4,8 +4,8 @@
 # fuzz_study and fuzz_sensitivity (study and sensitivity files) and fuzz_result (result.json → the report),
 # built in build-san/ with ASan + UBSan.
 #   scripts/fuzz.sh --minutes 30        30 minutes in all, split over the targets by their weights (the long run)
-#   scripts/fuzz.sh --seconds 90        90 s for case and override, 3/8 of it (33 s) for each of the five
-#                                       others: 345 s of fuzzing, two targets at a time on 2 cores (CI)
+#   scripts/fuzz.sh --seconds 45        45 s for case and override, 3/8 of it (16 s) for each of the five
+#                                       others: 170 s of fuzzing, two targets at a time on 2 cores (CI)
 #   scripts/fuzz.sh --runs 20000        a fixed number of inputs per target (repeatable)
 #   --target NAME                       one target only (case, case_read, override, checkpoint, study, sensitivity, result)
 # The seeds are cases/, tests/lib/fixtures/ and fuzz/corpus/<target>/ (read only); what libFuzzer learns goes
