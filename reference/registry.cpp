@@ -633,6 +633,10 @@ std::vector<Entry> rolling_entries() {
     {{"rolling.rigid_velocity", "max(0, v0 + (2/3) g (sin alpha - mu_r cos alpha) t): a rigid disk rolling down a slope alpha >= 0 from v0 >= 0",
       {v0, {"alpha", "rad", "slope angle"}, mu_r, argument::gravity, argument::time}, "m/s"},
      [](const Args& a) { return rolling_rigid_velocity(a("v0"), a("alpha"), a("mu_r"), a("g"), a("t")); }},
+    {{"rolling.mode", "the rigid limit's initial motion from rest on slope alpha: 0 stays, 1 slides, 2 rolls, 3 rolls and slides "
+                      "(the block codes of incline.mode; a uniform disk; refs §7.4)",
+      {argument::slope, argument::friction, mu_r}, "1"},
+     [](const Args& a) { return static_cast<double>(rolling_disk_mode(a("alpha"), std::tan(a("phi")), a("mu_r"))); }},
     {{"rolling.rigid_slope_acceleration", "(2/3) g (sin alpha - mu_r cos alpha), 0 if tan alpha <= mu_r: a rigid disk on a slope",
       {{"alpha", "rad", "slope angle"}, mu_r, argument::gravity}, "m/s^2"},
      [](const Args& a) { return rolling_slope_acceleration(a("alpha"), a("mu_r"), a("g")); }},

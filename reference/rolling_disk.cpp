@@ -127,6 +127,22 @@ double rolling_rigid_velocity(double v0, double alpha, double mu_r, double g, do
   return std::max(0.0, v0 + (2.0 / 3.0) * g * (std::sin(alpha) - mu_r * std::cos(alpha)) * t);
 }
 
+int rolling_disk_mode(double alpha, double mu, double mu_r) {
+  constexpr const char* where = "ref::rolling_disk_mode";
+  if (!(std::isfinite(alpha) && alpha >= 0.0 && alpha < 0.5 * std::numbers::pi)) detail::fail(where, "alpha must be in [0, pi/2)", alpha);
+  detail::require_non_negative(where, "mu", mu);
+  detail::require_non_negative(where, "mu_r", mu_r);
+  const double t = std::tan(alpha);
+  if (t <= mu && t <= mu_r) return 0;  // friction F = m g sin α and moment F r both held
+  // The cap is reached first by the friction (μ ≤ μ_r): F = μ N turns the disk by μ N r < μ_r r N, which the
+  // rolling spring holds, so it slides without turning.
+  if (mu <= mu_r) return 1;
+  // μ_r < μ, tan α > μ_r: the moment is at its cap μ_r r N. Rolling without slip, a = r ω̇:
+  // (m + I/r²) a = m g (sin α − μ_r cos α) needs F = m g sin α − m a = m g (sin α + 2 μ_r cos α)/3 ≤ μ N,
+  // that is tan α ≤ 3μ − 2μ_r; beyond it the disk slides at F = μ N and spins up at (μ − μ_r) r N/I.
+  return t <= 3.0 * mu - 2.0 * mu_r ? 2 : 3;
+}
+
 double rolling_spring_moment(double kr, double kn, double mu_r, double radius, double approach, double rotation) {
   constexpr const char* where = "ref::rolling_spring_moment";
   detail::require_positive(where, "kr", kr);

@@ -51,6 +51,11 @@ double rolling_slope_acceleration(double alpha, double mu_r, double g);
 /// The rigid limit's velocity down a slope α ≥ 0 from v0 ≥ 0, rolling: max(0, v0 + (2/3) g (sin α − μ_r cos α) t)
 /// (it stops and stays once the moment can hold it).
 double rolling_rigid_velocity(double v0, double alpha, double mu_r, double g, double t);
+/// The rigid limit's initial motion from rest on a slope α (a uniform disk, I = ½ m r², friction μ, rolling
+/// friction μ_r), in the block codes of refs §2.3: 0 stays (tan α ≤ μ and tan α ≤ μ_r), 1 slides without
+/// turning (μ ≤ μ_r, tan α > μ), 2 rolls without slip (μ_r < tan α ≤ 3μ − 2μ_r), 3 rolls and slides
+/// (tan α > max(μ_r, 3μ − 2μ_r), μ_r < μ). Derived in docs/references.md §7.4.
+int rolling_disk_mode(double alpha, double mu, double mu_r);
 
 /// A rolling spring k_r with its cap μ_r R_r e_n (R3, R4) on a disk pressed into a wall by the approach δ
 /// (e_n = k_n times it) and turned statically by θ about its contact point: the centre's approach grows by

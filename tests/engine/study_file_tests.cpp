@@ -218,6 +218,16 @@ TEST_CASE("A mode map's overrides are read with the study file and refused at th
   const std::string no_lattice = std::string(DEM2D_SOURCE_DIR) + "/cases/pre/block_on_slope.toml";  // one contact, no [[lattice]]
   CHECK_THAT(refusal(with("wall_contact = 1", "wall_contact = 0").replace(map.find(block_mode), block_mode.size(), no_lattice)),
              StartsWith(at_line(6) + "mode_map.blocks: the case ") && Contains("lattice"));
+  // block = "rolling_disk": the case needs a disk element 0 and a rolling law on the wall contact
+  const std::string rolling = std::string(DEM2D_SOURCE_DIR) + "/cases/basic/rolling_mode.toml";
+  const std::string disk_map = with("wall_contact = 1", "wall_contact = 0\nblock = \"rolling_disk\"").replace(map.find(block_mode), block_mode.size(), rolling);
+  CHECK(ver::read_study(write("mode_map_disk", "study.toml", disk_map)).mode_block == ver::Study::ModeBlock::rolling_disk);
+  const std::string no_rolling = std::string(DEM2D_SOURCE_DIR) + "/cases/basic/disk_on_slope.toml";  // a disk, no rolling law
+  std::string unrolled = disk_map;
+  unrolled.replace(unrolled.find(rolling), rolling.size(), no_rolling);
+  CHECK_THAT(refusal(unrolled), StartsWith(at_line(10) + "mode_map.wall_contact: the case ") && Contains("contact.0.rolling"));
+  CHECK_THAT(refusal(with("wall_contact = 1", "wall_contact = 1\nblock = \"disk\"")),
+             StartsWith(at_line(11) + "mode_map.block: expected one of"));
   // variants are not what a mode map runs
   CHECK_THAT(refusal(map + "[[variant]]\nlabel = \"v\"\nset = [\"numerics.dt=1e-6\"]\n"),
              StartsWith(at_line(15) + "variant: a mode map runs its grid"));

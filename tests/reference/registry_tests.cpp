@@ -110,6 +110,7 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"rolling.rigid_stop_distance", {"v0", "mu_r", "g"}},
       {"rolling.rigid_stop_time", {"v0", "mu_r", "g"}},
       {"rolling.rigid_velocity", {"v0", "alpha", "mu_r", "g", "t"}},
+      {"rolling.mode", {"alpha", "phi", "mu_r"}},
       {"rolling.rigid_slope_acceleration", {"alpha", "mu_r", "g"}},
       {"rocking.impact_time", {"b", "h", "theta0", "g"}},
       {"rocking.impact_speed", {"b", "h", "theta0", "g"}},

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <vector>
 
 #include "ref/rolling_disk.hpp"
 
@@ -50,6 +51,53 @@ TEST_CASE("rolling_disk: on a slope it rolls at (2/3) g (sin α − μ_r cos α)
   CHECK_THAT(ref::rolling_disk(disk(100.0, rolls, 0.0), 0.2).v, WithinAbs(a * 0.2, 2.6e-4));
   CHECK(std::abs(ref::rolling_disk(disk(100.0, held, 0.0), 0.2).x) < 1e-6);
   CHECK(ref::rolling_rigid_velocity(0.1, 0.0, 0.1, 9.81, 1.0) == 0.0);  // stopped and stays
+}
+
+namespace {
+
+// The rigid disk's initial motion found another way: each of the four hypotheses (stays; slides without
+// turning; rolls without slip; rolls and slides) solved for its forces and accelerations and kept only if it
+// is consistent (m = r = g = 1, I = 1/2, N = cos α). Returns the consistent ones.
+std::vector<int> consistent_modes(double alpha, double mu, double mu_r) {
+  const double n = std::cos(alpha), s = std::sin(alpha), i = 0.5;
+  std::vector<int> modes;
+  if (s <= mu * n && s <= mu_r * n) modes.push_back(0);                // F = s, M = F r = s
+  if (s - mu * n > 0.0 && mu * n <= mu_r * n) modes.push_back(1);      // F = μN, no turn: M = F r within its cap
+  const double a = (s - mu_r * n) / (1.0 + i);                         // a = r ω̇, M = μ_r N, F = s − a
+  if (a > 0.0 && s - a <= mu * n) modes.push_back(2);
+  const double a3 = s - mu * n, spin = (mu * n - mu_r * n) / i;        // F = μN, M = μ_r N
+  if (spin > 0.0 && a3 - spin > 0.0) modes.push_back(3);
+  return modes;
+}
+
+}  // namespace
+
+TEST_CASE("rolling_disk: the initial motion on a slope is the one consistent hypothesis (refs 7.4)", "[reference][rolling]") {
+  const double deg = std::numbers::pi / 180.0;
+  int checked = 0;
+  for (double mu_r : {0.25, 1.0 / 3.0, 0.5, 0.75, 1.0, 2.0})
+    for (double phi = 10.0; phi <= 60.0; phi += 2.5)
+      for (double alpha = 1.0; alpha <= 88.0; alpha += 1.5) {
+        const double mu = std::tan(phi * deg);
+        const std::vector<int> modes = consistent_modes(alpha * deg, mu, mu_r);
+        CAPTURE(mu_r, phi, alpha);
+        // On a boundary (α = φ on the grid, two hypotheses at equality, or one lost to round-off): no test of
+        // the inequalities.
+        const double t = std::tan(alpha * deg);
+        const bool on_boundary = std::abs(t - mu) < 1e-9 || std::abs(t - mu_r) < 1e-9 || std::abs(t - (3.0 * mu - 2.0 * mu_r)) < 1e-9;
+        if (modes.size() != 1 || on_boundary) continue;
+        CHECK(ref::rolling_disk_mode(alpha * deg, mu, mu_r) == modes.front());
+        ++checked;
+      }
+  CHECK(checked > 3000);
+  // the four regions all occur: μ_r = 1/2, φ = 38°: stays at 20°, rolls at 40°, rolls and slides at 60°; μ_r = 2: slides at 60°
+  const double mu38 = std::tan(38.0 * deg);
+  CHECK(ref::rolling_disk_mode(20.0 * deg, mu38, 0.5) == 0);
+  CHECK(ref::rolling_disk_mode(40.0 * deg, mu38, 0.5) == 2);
+  CHECK(ref::rolling_disk_mode(60.0 * deg, mu38, 0.5) == 3);
+  CHECK(ref::rolling_disk_mode(60.0 * deg, mu38, 2.0) == 1);
+  CHECK_THROWS_AS(ref::rolling_disk_mode(-0.1, 0.5, 0.5), std::invalid_argument);
+  CHECK_THROWS_AS(ref::rolling_disk_mode(0.5, -0.5, 0.5), std::invalid_argument);
 }
 
 TEST_CASE("rolling_disk refuses bad arguments", "[reference][rolling]") {

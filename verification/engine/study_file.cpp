@@ -161,7 +161,9 @@ void read_mode_map(Study& s, const TableReader& top, const std::string& file) {
   s.slide_threshold = r.quantity("slide_threshold", dem::dims::length, 1e-4);
   if (!(s.slide_threshold > 0.0)) r.fail("slide_threshold", "expected a positive length");
   s.wall_contact = static_cast<int>(r.integer("wall_contact", 0, 1000, 1));
-  s.polygon_block = r.choice("block", {"lattice", "polygon"}, "lattice") == "polygon";
+  const std::string block = r.choice("block", {"lattice", "polygon", "rolling_disk"}, "lattice");
+  s.mode_block = block == "polygon" ? Study::ModeBlock::polygon
+                 : block == "rolling_disk" ? Study::ModeBlock::rolling_disk : Study::ModeBlock::lattice;
   r.finish();
 }
 

@@ -112,7 +112,10 @@ struct Study {
   std::vector<double> phis, alphas;  // [rad]
   double radius = 0.0, margin = 0.0, rotation_threshold = 0.0, slide_threshold = 0.0;
   int wall_contact = 1;
-  bool polygon_block = false;  // block = "polygon": each block is one polygon (element 0) of 2r·columns × 2r·rows
+  // block = "lattice" (columns × rows bonded PREs), "polygon" (one polygon, element 0, of 2r·columns × 2r·rows)
+  // or "rolling_disk" (one disk, element 0, with rolling resistance μ_r = columns/rows on contact `wall_contact`:
+  // the disk that stays, in the rigid limit, exactly where the block stays; refs §7.4)
+  enum class ModeBlock { lattice, polygon, rolling_disk } mode_block = ModeBlock::lattice;
 };
 
 /// The `setup` table of a study or sensitivity file (numbers and strings, shown in the report).
@@ -129,7 +132,7 @@ const char* kind_word(Kind k);
 
 /// The overrides of one mode-map grid point (study_mode_map.cpp): the study's `set`, then the block's
 /// lattice (`blocks[block]`; with block = "polygon" the size and position of polygon element 0, its base on
-/// the slope from x = 0 to x = b), the slope angle α as the gravity direction, the friction angle φ of contact
+/// the slope from x = 0 to x = b; with block = "rolling_disk" the rolling friction b/h), the slope angle α as the gravity direction, the friction angle φ of contact
 /// `wall_contact`, the pivot probes; read_study reads the case with them for every block before anything runs.
 std::vector<std::string> mode_map_sets(const Study& s, std::size_t block, double phi, double alpha);
 
