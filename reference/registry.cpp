@@ -24,6 +24,7 @@
 #include "ref/require.hpp"
 #include "ref/resting_overlap.hpp"
 #include "ref/rocking_block.hpp"
+#include "ref/oblique_impact.hpp"
 #include "ref/rolling_disk.hpp"
 #include "ref/silo.hpp"
 #include "ref/silo_fill.hpp"
@@ -643,12 +644,35 @@ std::vector<Entry> rolling_entries() {
   };
 }
 
+ObliqueRebound impact_of(const Args& a) {
+  return oblique_impact({.m = a("m"), .r = a("r"), .kn = a("kn"), .eta_n = a("eta_n"), .ks = a("ks"), .eta_s = a("eta_s"),
+                         .mu = a("mu"), .v = a("v"), .theta = a("theta"), .omega0 = a("omega0")});
+}
+
+/// Oblique impact of a disk on a wall (Chung & Ooi's tests 4–6 in 2D; ref/oblique_impact.hpp).
+std::vector<Entry> oblique_entries() {
+  const std::vector<SolverArgument> args = {
+      argument::mass, {"r", "m", "disk radius"}, {"kn", "N/m", "normal spring K_n"}, {"eta_n", "N s/m", "normal dashpot eta_n"},
+      {"ks", "N/m", "shear spring K_s"}, {"eta_s", "N s/m", "shear dashpot eta_s"}, {"mu", "1", "Coulomb friction mu"},
+      {"v", "m/s", "impact speed"}, {"theta", "rad", "incidence from the wall's normal, in [0, pi/2)"},
+      {"omega0", "rad/s", "initial spin, counter-clockwise positive"}};
+  return {
+    {{"oblique.vt_after", "velocity along the wall after an oblique impact of a uniform disk (linear contact with a capped "
+                          "shear spring, continuous time, RK4; refs §1.8)", args, "m/s"},
+     [](const Args& a) { return impact_of(a).vt; }},
+    {{"oblique.omega_after", "spin after the same impact (counter-clockwise positive)", args, "rad/s"},
+     [](const Args& a) { return impact_of(a).omega; }},
+    {{"oblique.vn_after", "normal velocity away from the wall after the same impact", args, "m/s"},
+     [](const Args& a) { return impact_of(a).vn; }},
+  };
+}
+
 /// Every solver, in a fixed order (the groups above, one after the other).
 const std::vector<Entry>& table() {
   static const std::vector<Entry> entries = [] {
     std::vector<Entry> all;
     for (auto make : {contact_entries, block_entries, silo_and_beam_entries, silo_fill_entries, exact_entries, disk_slope_entries,
-                      rolling_entries}) {
+                      rolling_entries, oblique_entries}) {
       std::vector<Entry> group = make();
       all.insert(all.end(), std::make_move_iterator(group.begin()), std::make_move_iterator(group.end()));
     }
