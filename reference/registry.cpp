@@ -24,6 +24,7 @@
 #include "ref/require.hpp"
 #include "ref/resting_overlap.hpp"
 #include "ref/rocking_block.hpp"
+#include "ref/gap_spring.hpp"
 #include "ref/oblique_impact.hpp"
 #include "ref/rolling_disk.hpp"
 #include "ref/silo.hpp"
@@ -667,12 +668,25 @@ std::vector<Entry> oblique_entries() {
   };
 }
 
+/// A gap spring stretched at constant speed (ref/gap_spring.hpp).
+std::vector<Entry> gap_entries() {
+  const SolverArgument k{"k", "N/m", "the bond's spring (normal or shear)"}, eta{"eta", "N s/m", "its dashpot"},
+      v{"v", "m/s", "the constant stretch rate"}, strength{"strength", "N", "the elastic force at which it breaks"};
+  return {
+    {{"gap.pull_force", "k v t + eta v while k v t <= strength, else 0: a bond stretched at constant speed (refs §8)",
+      {k, eta, v, argument::time, strength}, "N"},
+     [](const Args& a) { return gap_pull_force(a("k"), a("eta"), a("v"), a("t"), a("strength")); }},
+    {{"gap.break_time", "strength/(k v): when that bond breaks", {k, v, strength}, "s"},
+     [](const Args& a) { return gap_break_time(a("k"), a("v"), a("strength")); }},
+  };
+}
+
 /// Every solver, in a fixed order (the groups above, one after the other).
 const std::vector<Entry>& table() {
   static const std::vector<Entry> entries = [] {
     std::vector<Entry> all;
     for (auto make : {contact_entries, block_entries, silo_and_beam_entries, silo_fill_entries, exact_entries, disk_slope_entries,
-                      rolling_entries, oblique_entries}) {
+                      rolling_entries, oblique_entries, gap_entries}) {
       std::vector<Entry> group = make();
       all.insert(all.end(), std::make_move_iterator(group.begin()), std::make_move_iterator(group.end()));
     }

@@ -53,10 +53,10 @@ MODEL = "docs/model.md"
 
 W = r"A-Za-z0-9_"
 # A label in canonical spelling; the look-ahead keeps "K1" out of "K19" and "K6" out of "K6.a".
-LABEL = re.compile(rf"(?<![{W}])([KMRP])([0-9]{{1,2}})(?:\.([0-9a-z]))?(?![{W}]|\.[0-9a-z](?![{W}]))")
+LABEL = re.compile(rf"(?<![{W}])([KMRPB])([0-9]{{1,2}})(?:\.([0-9a-z]))?(?![{W}]|\.[0-9a-z](?![{W}]))")
 # Non-canonical: digits followed directly by lower-case letters, or by the paper's middle dot.
-BAD_SPELLING = re.compile(rf"(?<![{W}])[KMRP][0-9]{{1,2}}(?:[a-z]|\s*[·・]\s*[0-9a-z])(?![{W}])")
-ITEM = re.compile(r"^([KMRP])([0-9]{1,2})(?:\.([0-9a-z]))?(?:\s*[–-]\s*([KMRP])([0-9]{1,2}))?(?![A-Za-z0-9_.])")
+BAD_SPELLING = re.compile(rf"(?<![{W}])[KMRPB][0-9]{{1,2}}(?:[a-z]|\s*[·・]\s*[0-9a-z])(?![{W}])")
+ITEM = re.compile(r"^([KMRPB])([0-9]{1,2})(?:\.([0-9a-z]))?(?:\s*[–-]\s*([KMRPB])([0-9]{1,2}))?(?![A-Za-z0-9_.])")
 
 
 def labels_of_item(item):

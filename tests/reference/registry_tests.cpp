@@ -115,6 +115,8 @@ TEST_CASE("registry: every solver with its exact argument list", "[registry]") {
       {"oblique.vt_after", {"m", "r", "kn", "eta_n", "ks", "eta_s", "mu", "v", "theta", "omega0"}},
       {"oblique.omega_after", {"m", "r", "kn", "eta_n", "ks", "eta_s", "mu", "v", "theta", "omega0"}},
       {"oblique.vn_after", {"m", "r", "kn", "eta_n", "ks", "eta_s", "mu", "v", "theta", "omega0"}},
+      {"gap.pull_force", {"k", "eta", "v", "t", "strength"}},
+      {"gap.break_time", {"k", "v", "strength"}},
       {"rocking.impact_time", {"b", "h", "theta0", "g"}},
       {"rocking.impact_speed", {"b", "h", "theta0", "g"}},
       {"rocking.rebound_tilt", {"b", "h", "theta0"}},

@@ -206,6 +206,35 @@ struct Reader {
     return r;
   }
 
+  /// gap = { distance = "0.1 mm", kn = "1e6 N/m", ks = "4e5 N/m", damping_ratio = 0.1, tensile_strength = "20 N",
+  /// shear_strength = "20 N", break_distance = "0.05 mm" }: gap springs (B1–B5).
+  GapSpringLaw read_gap(const TableReader& t) {
+    GapSpringLaw g;
+    g.enabled = true;
+    g.distance = t.quantity("distance", dims::length);  // (B1)
+    non_negative(t, "distance", g.distance);
+    g.kn = t.quantity("kn", dims::stiffness);
+    positive(t, "kn", g.kn);
+    g.ks = t.quantity("ks", dims::stiffness);
+    non_negative(t, "ks", g.ks);
+    g.damping_ratio = t.number("damping_ratio", 0.0);
+    non_negative(t, "damping_ratio", g.damping_ratio);
+    if (t.has("tensile_strength")) {  // (B4.a); (B4.b) and (B4.c) below
+      g.tensile_strength = t.quantity("tensile_strength", dims::force);
+      positive(t, "tensile_strength", g.tensile_strength);
+    }
+    if (t.has("shear_strength")) {
+      g.shear_strength = t.quantity("shear_strength", dims::force);
+      positive(t, "shear_strength", g.shear_strength);
+    }
+    if (t.has("break_distance")) {
+      g.break_gap = t.quantity("break_distance", dims::length);
+      positive(t, "break_distance", g.break_gap);
+    }
+    t.finish();
+    return g;
+  }
+
   /// kn_from_elastic = { E = "750 kgf/cm^2", nu = 0.3, q = "0.068 kgf/cm", radius = "1 cm", c = 1.5,
   /// factor = 1 }: Kiyama's K_n per unit thickness [Pa] from the 2D elastic contact of two equal
   /// cylinders (K22.b, K23), times `factor` (Kiyama's walls: 2).
@@ -290,6 +319,7 @@ struct Reader {
       non_negative(r, r.has("ks") ? "ks" : "ks_ratio", law.linear.ks);
       law.linear.mu = mu;
       if (r.has("rolling")) law.rolling = read_rolling(TableReader(*r.table("rolling"), r.key_path("rolling"), file), l);
+      if (r.has("gap")) law.gap = read_gap(TableReader(*r.table("gap"), r.key_path("gap"), file));
       law.linear.end_rule = r.choice("end_rule", {"elastic", "total"}, "elastic") == "elastic" ? EndRule::elastic : EndRule::total;
       if (!law.damping_from_ratio) {
         if (r.has("eta_s")) {
@@ -301,6 +331,7 @@ struct Reader {
       }
     } else {
       if (r.has("rolling")) r.fail("rolling", "rolling resistance is an option of the linear law (a PRE face resists rotation by its segments)");
+      if (r.has("gap")) r.fail("gap", "gap springs are an option of the linear law (a PRE face bonds by its links: bond_at_start)");
       FaceLaw& f = law.face;
       f.positions = r.choice("positions", {"centres", "ends"}, "centres") == "centres" ? SegmentPositions::centres : SegmentPositions::ends;
       f.segments = static_cast<int>(r.integer("segments", 1, kMaxSegments, f.positions == SegmentPositions::ends ? 2 : 1));

@@ -122,6 +122,15 @@ std::vector<TableSpec> small_tables() {
           num("stiffness_factor", "β of k_r = β k_n μ_r² R_r² (R2; Ai et al.: 2.25); or stiffness"),
           num("damping_ratio", "ζ_r of the rolling dashpot C_r = 2 ζ_r √(I_r k_r) (R5)", 0.0),
       }},
+      {"contact.gap", "Gap springs of a linear contact: bonds formed at the start between disks at most `distance` apart, in parallel with the contact law (B1–B5).", {
+          need(q("distance", {d::length}, "pairs whose surface gap is at most this at the start are bonded (B1); may be 0")),
+          need(q("kn", {d::stiffness}, "normal spring of the bond, in tension and compression (B2)")),
+          need(q("ks", {d::stiffness}, "shear spring of the bond (B2)")),
+          num("damping_ratio", "ζ of the bond's dashpots η = 2ζ√(m_eff k), normal and shear (B3)", 0.0),
+          q("tensile_strength", {d::force}, "the bond breaks when its tension exceeds this (B4.a); none: never in tension"),
+          q("shear_strength", {d::force}, "the bond breaks when its shear force exceeds this (B4.b); none: never in shear"),
+          q("break_distance", {d::length}, "the bond breaks when the surface gap exceeds this (B4.c); none: never by distance"),
+      }},
       {"contact.kn_from_elastic", "Kiyama's K_n per unit thickness from 2D elastic contact (K22.b, K23), times l.", {
           need(q("E", {d::pressure}, "Young's modulus")),
           need(num("nu", "Poisson's ratio, 0 <= nu < 0.5")),
@@ -158,6 +167,7 @@ TableSpec contact_table() {
       q("ks", {d::stiffness, d::pressure}, "shear stiffness K_s; or ks_ratio (default 0)"),
       num("ks_ratio", "K_s / K_n (K24); or ks"),
       sub("rolling", SpecKind::table, "contact.rolling", "linear: rolling resistance (R1–R6), off if absent"),
+      sub("gap", SpecKind::table, "contact.gap", "linear: gap springs between disks bonded at the start (B1–B5), off if absent"),
       words("end_rule", {"elastic", "total"}, "linear: Kiyama's K8 (elastic) or no attractive total force", "elastic"),
       words("positions", {"centres", "ends"}, "face: segment positions, M13.1 or M13.2 (ends: 2 segments)", "centres"),
       whole("segments", "face: the segment count N (default 1; 2 with positions = \"ends\")", 1, 8),

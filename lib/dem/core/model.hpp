@@ -12,6 +12,7 @@
 #include "dem/core/polygon.hpp"
 #include "dem/contact/face_contact.hpp"
 #include "dem/contact/linear_contact.hpp"
+#include "dem/contact/gap_spring.hpp"
 #include "dem/contact/rolling_resistance.hpp"
 #include "dem/core/vec2.hpp"
 #include "dem/core/velocity_history.hpp"
@@ -43,6 +44,7 @@ struct PairLaw {
   LawKind kind = LawKind::linear;
   LinearSpringDashpot linear;  // kind == linear: kn, ks [N/m], mu, end rule
   RollingLaw rolling;          // kind == linear: rolling resistance (R1–R6), off by default
+  GapSpringLaw gap;            // kind == linear: gap springs between disks bonded at the start (B1–B5), off by default
   FaceLaw face;                // kind == face
   double face_kn = 0.0, face_ks = 0.0;  // kind == face: discrete springs per segment [N/m] (M6), or
   bool face_modulus = false;            //   if face_modulus: k_n, k_s per unit area per unit strain [Pa] (M4, M5)

@@ -98,6 +98,7 @@ Energies Simulation::energies() const {
   }
   for (std::size_t c = element_chunks; c < chunks; ++c) en.elastic += energy_chunks_[c].elastic;
   if (polygons_) en.elastic += polygon_elastic_energy();  // (one thread: the sum is the same for any thread count)
+  en.elastic += gap_spring_energy();  // (B2): the bonds' springs, tension or compression
   return en;
 }
 

@@ -61,6 +61,7 @@ void Simulation::reference_step() {
   for (std::size_t k = 0; k < linear_walls_.size(); ++k) reference_linear_wall(k, inv_dt);
   for (std::size_t k = 0; k < face_walls_.size(); ++k) reference_face_wall(k, inv_dt);
   sweep_polygons(inv_dt);  // polygon elements (P5–P8, K6–K14): one readable loop, shared with step()
+  sweep_gap_springs(inv_dt);  // gap springs (B2–B5): one readable loop, shared with step()
   if (m_.base_plate.enabled) advance_base_plate();  // (M21): base friction, before the velocities
   // (K16, K17): velocities; (K18) or (K19): the increments of the next step; positions.
   const double dt_v = velocity_dt();  // Δt, or Δt/2 at a staggered start

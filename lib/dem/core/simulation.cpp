@@ -40,6 +40,7 @@ Simulation::Simulation(Model model) : m_(std::move(model)) {
     wl.increment = wl.drive >= 0 ? m_.drives[static_cast<std::size_t>(wl.drive)].at(0.0) * m_.numerics.dt
                                  : Vec2{};
   check_polygon_model();
+  form_gap_springs();  // (B1): the bonds of the start
   for (const PairLaw& law : m_.laws) linear_pairs_.with_rolling = linear_pairs_.with_rolling || law.rolling.enabled;
   rebuild();
   if (!m_.preloads.empty()) apply_preloads();
@@ -107,6 +108,7 @@ void Simulation::open_wall(std::uint32_t w) {
 
 int Simulation::threads_asked() const {
   if (polygons_) return 1;  // polygon contacts are swept on one thread (polygon_sweep.cpp)
+  if (!gap_springs_.empty()) return 1;  // so are gap springs (gap_springs.cpp)
   const std::size_t most = std::max<std::size_t>(1, m_.elements.size() / min_per_thread_);
   return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads_), most));
 }
@@ -173,6 +175,7 @@ void Simulation::step() {
     sweep_scatter(inv_dt);
     sum_wall_forces();
     sweep_polygons(inv_dt);  // (P5–P8): after the other sweeps, as in the reference step
+    sweep_gap_springs(inv_dt);  // (B2–B5): last, as in the reference step
     const double t1 = timings_.on ? phase_clock() : 0.0;
     if (!plate) {
       range_tests_.assign(1, RangeTests{});

@@ -336,6 +336,18 @@ class Simulation {
   void polygon_contacts(std::vector<ContactView>& out) const;
   const PolygonSlot* polygon_slot(std::uint32_t i, std::uint32_t j, bool wall) const;  // touching, or nullptr
   bool polygons_ = false;
+  // Gap springs (gap_springs.cpp, docs/model.md §6): bonds formed at the start between disks whose law has
+  // `gap`; a model with them steps on one thread, their sweep after the other sweeps.
+  void form_gap_springs();  // throws std::invalid_argument on what they do not support
+  void sweep_gap_springs(double inv_dt);  // (B2–B5)
+  double gap_spring_energy() const;
+ public:
+  /// The gap springs (B1): formed at the start, in (i, j) order; `intact` false once broken.
+  const std::vector<GapSpring>& gap_springs() const { return gap_springs_; }
+  std::size_t gap_springs_intact() const;
+
+ private:
+  std::vector<GapSpring> gap_springs_;
   std::vector<PolygonSlot> polygon_pairs_, polygon_walls_;  // sorted by (i, j)
   std::vector<CornerHit> hits_;                             // sweep scratch
   std::vector<CornerSlot> corner_scratch_;

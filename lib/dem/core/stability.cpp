@@ -398,6 +398,34 @@ void add_rolling(const PairLaw& law, const Stats& self, const Stats* other, Kind
   }
 }
 
+/// The gap springs of a law between two classes (B2, B3), as the largest rates; all zero without them.
+struct GapRates {
+  double kn = 0.0, ks = 0.0;        // the springs
+  double eta_n = 0.0, eta_s = 0.0;  // their dashpots at the largest reduced mass
+  double hopf = inf;                // the smallest η_n/k_n (K19's Hopf room)
+};
+GapRates gap_spring_rates(const PairLaw& law, const Stats& self, const Stats& other) {
+  GapRates g;
+  if (!law.gap.enabled) return g;
+  const double m_big = self.fm_max * other.m_max / (self.fm_max + other.m_max);
+  const double m_small = self.fm_min * other.m_min / (self.fm_min + other.m_min);
+  g.kn = law.gap.kn, g.ks = law.gap.ks;
+  g.eta_n = 2.0 * law.gap.damping_ratio * std::sqrt(m_big * law.gap.kn);
+  g.eta_s = 2.0 * law.gap.damping_ratio * std::sqrt(m_big * law.gap.ks);
+  g.hopf = 2.0 * law.gap.damping_ratio * std::sqrt(m_small / law.gap.kn);
+  return g;
+}
+
+/// What the bound assumes of the linear law's options present in the model (rolling, gap springs).
+std::string option_assumptions(const Model& m) {
+  std::string out;
+  if (std::any_of(m.laws.begin(), m.laws.end(), [](const PairLaw& l) { return l.kind == LawKind::linear && l.rolling.enabled; }))
+    out += "; rolling springs and dashpots (R2, R5) on the rotations, in both limits (add_rolling)";
+  if (std::any_of(m.laws.begin(), m.laws.end(), [](const PairLaw& l) { return l.kind == LawKind::linear && l.gap.enabled; }))
+    out += "; gap springs and dashpots (B2, B3) in parallel with every element contact of their law, their shear in the sliding limit too";
+  return out;
+}
+
 /// The weights of one contact of an element of class `self` with a partner of class `other` (nullptr
 /// for a wall) under `law`.
 Kind contact_kind(const Model& m, std::int32_t law_index, const Stats& self, const Stats* other) {
@@ -421,15 +449,21 @@ Kind contact_kind(const Model& m, std::int32_t law_index, const Stats& self, con
         if (kn > 0.0) hn = std::min(hn, d.eta_n / kn);
         if (ks > 0.0) hs = std::min(hs, d.eta_s / ks);
       }
-    k.k.w = kn / mi;
-    k.c.w = en / mi;
+    // Gap springs (B2, B3) between two elements: in parallel with the contact's springs, and their shear
+    // spring does not slide (it breaks), so it counts in the sliding bound too.
+    const GapRates gap = wall ? GapRates{} : gap_spring_rates(law, self, *other);
+    const double kn_t = kn + gap.kn, en_t = en + gap.eta_n;
+    k.k.w = kn_t / mi;
+    k.c.w = en_t / mi;
     if (!wall) {
-      k.k.b = kn / std::sqrt(mi * mj);
-      k.c.b = en / std::sqrt(mi * mj);
+      k.k.b = gap.ks * vsi + std::max(kn_t / std::sqrt(mi * mj), gap.ks * std::sqrt(vsi * vsj));
+      k.c.b = gap.eta_s * vsi + std::max(en_t / std::sqrt(mi * mj), gap.eta_s * std::sqrt(vsi * vsj));
+      hn = std::min(hn, gap.hopf);
     }
     k.hopf = hn;
-    k.k_stick = {k.k.w, ks * vsi + (wall ? 0.0 : std::max(kn / std::sqrt(mi * mj), ks * std::sqrt(vsi * vsj)))};
-    k.c_stick = {k.c.w, es * vsi + (wall ? 0.0 : std::max(en / std::sqrt(mi * mj), es * std::sqrt(vsi * vsj)))};
+    const double ks_t = ks + gap.ks, es_t = es + gap.eta_s;
+    k.k_stick = {k.k.w, ks_t * vsi + (wall ? 0.0 : std::max(kn_t / std::sqrt(mi * mj), ks_t * std::sqrt(vsi * vsj)))};
+    k.c_stick = {k.c.w, es_t * vsi + (wall ? 0.0 : std::max(en_t / std::sqrt(mi * mj), es_t * std::sqrt(vsi * vsj)))};
     k.hopf_stick = std::min(hn, hs);
     if (law.rolling.enabled) add_rolling(law, self, other, k);
     return k;
@@ -782,8 +816,7 @@ static StabilityBound disk_and_pre_bound(const Model& m, const std::vector<Stabi
       "worst directions on a 0.5 deg grid (each grid point taking the largest value within a quarter degree); "
       "block-Gershgorin bound, exact for one contact; shear springs of Coulomb contacts counted only in the sticking limit",
       100 * kOverlap);
-  if (std::any_of(m.laws.begin(), m.laws.end(), [](const PairLaw& l) { return l.kind == LawKind::linear && l.rolling.enabled; }))
-    out.assumptions += "; rolling springs and dashpots (R2, R5) on the rotations, in both limits (add_rolling)";
+  out.assumptions += option_assumptions(m);
   bool first = true;
   const StartNetwork net = start_network_if_bonded(m);
   ClassRates unbonded;  // the Gershgorin rates of the classes with free elements not bonded at the start

@@ -22,6 +22,16 @@ std::string law_in_words(const nlohmann::json& l) {
       else s += fmt::format("k_r = {:.6g} k_n mu_r^2 R_r^2 (R2)", r["stiffness_factor"].get<double>());
       s += fmt::format(", rolling damping ratio {:.6g} (C_r = 2 zeta_r sqrt(I_r k_r), R5; none at the cap)", r["damping_ratio"].get<double>());
     }
+    if (l.contains("gap")) {
+      const auto& g = l["gap"];
+      auto limit = [&](const char* key, const char* unit) {
+        return g.contains(key) ? fmt::format("{:.6g} {}", g[key].get<double>(), unit) : std::string("none");
+      };
+      s += fmt::format(", gap springs (B1-B5) bonding the disks at most {:.6g} m apart at the start: kn = {:.6g} N/m, ks = {:.6g} N/m "
+                       "in tension and compression, damping ratio {:.6g}, breaking at a tension of {}, a shear of {}, a gap of {}",
+                       g["distance"].get<double>(), g["kn"].get<double>(), g["ks"].get<double>(), g["damping_ratio"].get<double>(),
+                       limit("tensile_strength", "N"), limit("shear_strength", "N"), limit("break_distance", "m"));
+    }
   } else {
     s += fmt::format(", {} segment(s) at the {} ({}), normal increment {}, tangential increment {}, onset {}",
                      l["segments"].get<int>(), l["positions"] == "centres" ? "segment centres" : "face ends",

@@ -3,6 +3,7 @@
 
 #include "dem/cases/text.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <limits>
@@ -223,6 +224,12 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
   if (name == "energy.elastic") return [](const Simulation& s) { return s.energies().elastic; };
   if (name == "energy.total") return [](const Simulation& s) { return s.energies().total(); };
   if (name == "mean_increment") return mean_increment;
+  if (name == "gap_springs.intact" || name == "gap_springs.broken") {  // (B1, B4): bonds formed at the start, intact or broken
+    if (std::none_of(m.laws.begin(), m.laws.end(), [](const PairLaw& l) { return l.gap.enabled; }))
+      throw bad("needs gap springs (a `gap = { … }` in a linear [[contact]])");
+    if (name == "gap_springs.intact") return [](const Simulation& s) { return static_cast<double>(s.gap_springs_intact()); };
+    return [](const Simulation& s) { return static_cast<double>(s.gap_springs().size() - s.gap_springs_intact()); };
+  }
   try {  // active.top, active.area_fraction(x0,x1,y0,y1): fill_quantities.hpp
     if (auto fill = compile_fill_quantity(name)) return *fill;
   } catch (const std::invalid_argument& e) {
@@ -337,6 +344,7 @@ QuantityFn compile_quantity(const std::string& name, const Model& m) {
 std::string quantity_unit(const std::string& name) {
   if (name == "t") return "s";
   if (name == "step" || name == "contacts" || name == "unbalanced_force_ratio") return "1";
+  if (name == "gap_springs.intact" || name == "gap_springs.broken") return "1";
   if (name.rfind("box.vx(", 0) == 0 || name.rfind("box.vy(", 0) == 0) return "m/s";
   if (name == "discharged.count" || name == "active.count") return "1";
   if (name == "discharged.mass" || name == "active.mass") return "kg";

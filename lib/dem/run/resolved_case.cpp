@@ -68,6 +68,14 @@ nlohmann::json law_json(const Model& m, const PairLaw& law) {
       r["damping_ratio"] = law.rolling.damping_ratio;
       j["rolling"] = r;
     }
+    if (law.gap.enabled) {  // (B1–B5); absent when off; a strength that never breaks is absent (no JSON infinity)
+      nlohmann::json g;
+      g["distance"] = law.gap.distance, g["kn"] = law.gap.kn, g["ks"] = law.gap.ks, g["damping_ratio"] = law.gap.damping_ratio;
+      if (std::isfinite(law.gap.tensile_strength)) g["tensile_strength"] = law.gap.tensile_strength;
+      if (std::isfinite(law.gap.shear_strength)) g["shear_strength"] = law.gap.shear_strength;
+      if (std::isfinite(law.gap.break_gap)) g["break_distance"] = law.gap.break_gap;
+      j["gap"] = g;
+    }
   } else {
     const FaceLaw& f = law.face;
     j["segments"] = f.segments;
