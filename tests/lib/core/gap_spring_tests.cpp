@@ -13,6 +13,7 @@
 #include "dem/contact/gap_spring.hpp"
 #include "dem/core/simulation.hpp"
 #include "dem/core/stability.hpp"
+#include "dem/run/run.hpp"
 #include "../test_support.hpp"
 
 namespace {
@@ -200,4 +201,18 @@ TEST_CASE("gap spring: the case keys are read strictly, at their line", "[gap_sp
   CHECK_THAT(refusal("{ distance = \"0.1 mm\", kn = \"1 N/m\", ks = \"1 N/m\", strength = \"1 N\" }"),
              Catch::StartsWith("gap.toml:10: contact.0.gap.strength"));
   CHECK_THAT(refusal("{ distance = \"0.1 mm\", kn = \"1 N/m\", ks = \"1 N/m\" }", "face"), Catch::Contains("contact.0.gap") && Catch::Contains("linear law"));
+}
+
+TEST_CASE("gap spring: checkpoints of a case with gap springs are refused, and an interrupted run writes none", "[gap_spring]") {
+  dem::RunOptions opt;
+  opt.checkpoint_at_end = true;
+  CHECK_THAT(test::message_of<dem::CaseError>([&] { dem::run_case(dem::read_case(kPair, {}), opt); }),
+             Catch::Contains("checkpoints of a case with gap springs"));
+  opt = {};
+  opt.out_dir = std::filesystem::temp_directory_path() / "dem2d_gap_interrupted";
+  opt.interrupt_at_step = 10;
+  const dem::RunResult r = dem::run_case(dem::read_case(kPair, {}), opt);
+  CHECK(r.status == "interrupted");
+  CHECK_FALSE(std::filesystem::exists(opt.out_dir / "checkpoint.bin"));
+  CHECK(std::filesystem::exists(opt.out_dir / "summary.json"));
 }
